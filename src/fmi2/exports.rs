@@ -1,0 +1,826 @@
+//! Every FMI 2.0 common and co-simulation function, exported with its C name.
+//!
+//! Each one: find the instance (a pointer this library handed out and has not freed, else a
+//! refusal instead of a crash), turn pointers into slices, dispatch to [`Instance`], return.
+
+use super::ffi::*;
+use super::instance::{Instance, Phase, STATE_PHASES};
+use super::logger::Logger;
+use super::snapshot::Snapshot;
+use crate::interface::variable::Kind;
+use std::ffi::{c_int, CStr};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Mutex;
+
+/// Addresses of live instances: calls on anything else (freed twice, NULL, garbage) are refused.
+static LIVE: Mutex<Vec<usize>> = Mutex::new(Vec::new());
+static NEXT_ID: AtomicU64 = AtomicU64::new(1);
+
+fn live() -> std::sync::MutexGuard<'static, Vec<usize>> {
+    // A panic while holding the lock cannot leave the list inconsistent: recover it.
+    LIVE.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Runs `body` on a live instance, catching panics so none crosses into the importer.
+fn with_instance(c: Component, body: impl FnOnce(&mut Instance) -> Status) -> Status {
+    if c.is_null() || !live().contains(&(c as usize)) {
+        // No instance, so no logger to tell: the status is all we can give.
+        return Status::Error;
+    }
+    // SAFETY: `c` is in LIVE, so it is a Box<Instance> we leaked and have not freed yet; FMI
+    // forbids calling one instance from two threads at once.
+    let instance = unsafe { &mut *(c as *mut Instance) };
+    match catch_unwind(AssertUnwindSafe(|| body(&mut *instance))) {
+        Ok(status) => status,
+        Err(_) => {
+            instance.phase = Phase::Error;
+            instance.error("internal error (a bug in the FMU): the instance is in error state; call fmi2Reset or fmi2FreeInstance")
+        }
+    }
+}
+
+/// A borrowed C string, or None for NULL or invalid UTF-8.
+unsafe fn text<'a>(s: FmiString) -> Option<&'a str> {
+    if s.is_null() {
+        None
+    } else {
+        CStr::from_ptr(s).to_str().ok()
+    }
+}
+
+/// A slice from a pointer and a length; NULL is only acceptable for an empty slice.
+unsafe fn slice<'a, T>(p: *const T, n: usize) -> Option<&'a [T]> {
+    if n == 0 {
+        Some(&[])
+    } else if p.is_null() {
+        None
+    } else {
+        Some(std::slice::from_raw_parts(p, n))
+    }
+}
+
+unsafe fn slice_mut<'a, T>(p: *mut T, n: usize) -> Option<&'a mut [T]> {
+    if n == 0 {
+        Some(&mut [])
+    } else if p.is_null() {
+        None
+    } else {
+        Some(std::slice::from_raw_parts_mut(p, n))
+    }
+}
+
+fn null_argument(instance: &Instance, function: &str, what: &str) -> Status {
+    instance.error(&format!(
+        "{function}: {what} is NULL: expected a valid pointer"
+    ))
+}
+
+#[no_mangle]
+pub extern "C" fn fmi2GetTypesPlatform() -> FmiString {
+    c"default".as_ptr()
+}
+
+#[no_mangle]
+pub extern "C" fn fmi2GetVersion() -> FmiString {
+    c"2.0".as_ptr()
+}
+
+/// # Safety
+/// Pointers as the FMI 2.0 standard defines them.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2Instantiate(
+    instance_name: FmiString,
+    fmu_type: c_int,
+    fmu_guid: FmiString,
+    fmu_resource_location: FmiString,
+    functions: *const CallbackFunctions,
+    _visible: Boolean,
+    logging_on: Boolean,
+) -> Component {
+    catch_unwind(AssertUnwindSafe(|| {
+        // Without a logger nothing could ever be reported: refuse, as the standard requires one.
+        let Some(functions) = functions.as_ref() else { return std::ptr::null_mut() };
+        let Some(callback) = functions.logger else { return std::ptr::null_mut() };
+        let name = text(instance_name).unwrap_or("");
+        let logger = Logger::new(Some(callback), functions.component_environment, name);
+        let refuse = |message: String| {
+            logger.log(Status::Error, super::logger::CATEGORY_ERROR, &format!("fmi2Instantiate: {message}"));
+            std::ptr::null_mut()
+        };
+        if name.is_empty() {
+            return refuse("instanceName is NULL or empty: expected a non-empty name".into());
+        }
+        if fmu_type != CO_SIMULATION {
+            return refuse(format!("fmuType = {fmu_type}: this FMU supports only fmi2CoSimulation ({CO_SIMULATION})"));
+        }
+        let guid = text(fmu_guid).unwrap_or("");
+        let Some(&(model_identifier, guid)) = super::GUIDS.iter().find(|(_, g)| *g == guid) else {
+            let known: Vec<String> = super::GUIDS.iter().map(|(id, g)| format!("{g} ({id})")).collect();
+            return refuse(format!(
+                "fmuGUID \"{guid}\" matches no model of this binary: expected {} (is the modelDescription.xml from another build?)",
+                known.join(" or ")
+            ));
+        };
+        let Some(model) = crate::scenes::model(model_identifier) else {
+            return refuse(format!("model {model_identifier} is not built into this binary"));
+        };
+        if let Some(location) = text(fmu_resource_location) {
+            if !location.is_empty() && !location.starts_with("file:") {
+                return refuse(format!("fmuResourceLocation \"{location}\": expected a file: URI"));
+            }
+        }
+        let id = NEXT_ID.fetch_add(1, Ordering::Relaxed);
+        let instance = Box::new(Instance::new(id, model, guid, logger, logging_on != FALSE));
+        let address = Box::into_raw(instance);
+        live().push(address as usize);
+        address as Component
+    }))
+    .unwrap_or(std::ptr::null_mut())
+}
+
+/// # Safety
+/// `c` from fmi2Instantiate; NULL, foreign or already freed pointers are ignored.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2FreeInstance(c: Component) {
+    let removed = {
+        let mut live = live();
+        match live.iter().position(|&a| a == c as usize) {
+            Some(i) => {
+                live.swap_remove(i);
+                true
+            }
+            None => false,
+        }
+    };
+    if removed {
+        let _ = catch_unwind(AssertUnwindSafe(|| {
+            // SAFETY: it was live, and only this call could remove it.
+            let instance = Box::from_raw(c as *mut Instance);
+            for &snapshot in &instance.snapshots {
+                drop(Box::from_raw(snapshot as *mut Snapshot));
+            }
+        }));
+    }
+}
+
+/// # Safety
+/// Pointers as the FMI 2.0 standard defines them.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetDebugLogging(
+    c: Component,
+    logging_on: Boolean,
+    n_categories: usize,
+    categories: *const FmiString,
+) -> Status {
+    with_instance(c, |instance| {
+        let Some(categories) = slice(categories, n_categories) else {
+            return null_argument(instance, "fmi2SetDebugLogging", "categories");
+        };
+        let mut names = Vec::with_capacity(categories.len());
+        for &category in categories {
+            match text(category) {
+                Some(name) => names.push(name.to_string()),
+                None => return null_argument(instance, "fmi2SetDebugLogging", "a category name"),
+            }
+        }
+        instance.set_debug_logging(logging_on != FALSE, &names)
+    })
+}
+
+/// # Safety
+/// `c` from fmi2Instantiate.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetupExperiment(
+    c: Component,
+    tolerance_defined: Boolean,
+    tolerance: Real,
+    start_time: Real,
+    stop_time_defined: Boolean,
+    stop_time: Real,
+) -> Status {
+    with_instance(c, |instance| {
+        instance.trace(|| {
+            format!("fmi2SetupExperiment(startTime = {start_time}, stopTime = {stop_time})")
+        });
+        instance.setup_experiment(
+            (tolerance_defined != FALSE).then_some(tolerance),
+            start_time,
+            (stop_time_defined != FALSE).then_some(stop_time),
+        )
+    })
+}
+
+/// # Safety
+/// `c` from fmi2Instantiate.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2EnterInitializationMode(c: Component) -> Status {
+    with_instance(c, |instance| instance.enter_initialization_mode())
+}
+
+/// # Safety
+/// `c` from fmi2Instantiate.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Component) -> Status {
+    with_instance(c, |instance| instance.exit_initialization_mode())
+}
+
+/// # Safety
+/// `c` from fmi2Instantiate.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2Terminate(c: Component) -> Status {
+    with_instance(c, |instance| instance.terminate())
+}
+
+/// # Safety
+/// `c` from fmi2Instantiate.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2Reset(c: Component) -> Status {
+    with_instance(c, |instance| instance.reset())
+}
+
+fn is_real(kind: &Kind) -> bool {
+    matches!(kind, Kind::Real { .. })
+}
+
+fn is_integer(kind: &Kind) -> bool {
+    matches!(kind, Kind::Integer { .. } | Kind::Enumeration { .. })
+}
+
+fn is_none(_: &Kind) -> bool {
+    false
+}
+
+/// Which variables an FMI getter or setter reaches, and its name for messages.
+#[derive(Clone, Copy)]
+struct Access {
+    function: &'static str,
+    accepts: fn(&Kind) -> bool,
+    type_name: &'static str,
+}
+
+const fn access(
+    function: &'static str,
+    accepts: fn(&Kind) -> bool,
+    type_name: &'static str,
+) -> Access {
+    Access {
+        function,
+        accepts,
+        type_name,
+    }
+}
+
+/// Shared body of the getters: `convert` writes the f64 values into the C array.
+unsafe fn get_values<T>(
+    c: Component,
+    access: Access,
+    vr: *const ValueReference,
+    nvr: usize,
+    value: *mut T,
+    convert: fn(f64) -> T,
+) -> Status {
+    let Access {
+        function,
+        accepts,
+        type_name,
+    } = access;
+    with_instance(c, |instance| {
+        let (Some(vrs), Some(out)) = (slice(vr, nvr), slice_mut(value, nvr)) else {
+            return null_argument(instance, function, "vr or value");
+        };
+        let mut buffer = vec![0.0; nvr];
+        let status = instance.get(function, vrs, &mut buffer, accepts, type_name);
+        if status == Status::Ok {
+            for (slot, x) in out.iter_mut().zip(buffer) {
+                *slot = convert(x);
+            }
+        }
+        status
+    })
+}
+
+/// Shared body of the setters: `convert` reads the C array as f64 values.
+unsafe fn set_values<T: Copy>(
+    c: Component,
+    access: Access,
+    vr: *const ValueReference,
+    nvr: usize,
+    value: *const T,
+    convert: fn(T) -> f64,
+) -> Status {
+    let Access {
+        function,
+        accepts,
+        type_name,
+    } = access;
+    with_instance(c, |instance| {
+        let (Some(vrs), Some(values)) = (slice(vr, nvr), slice(value, nvr)) else {
+            return null_argument(instance, function, "vr or value");
+        };
+        instance.trace(|| format!("{function}(vr = {vrs:?})"));
+        let values: Vec<f64> = values.iter().map(|&v| convert(v)).collect();
+        instance.set(function, vrs, &values, accepts, type_name)
+    })
+}
+
+/// # Safety
+/// Arrays of `nvr` elements, as the FMI 2.0 standard defines them.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetReal(
+    c: Component,
+    vr: *const ValueReference,
+    nvr: usize,
+    value: *mut Real,
+) -> Status {
+    get_values(
+        c,
+        access("fmi2GetReal", is_real, "Real"),
+        vr,
+        nvr,
+        value,
+        |x| x,
+    )
+}
+
+/// # Safety
+/// Arrays of `nvr` elements, as the FMI 2.0 standard defines them.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetInteger(
+    c: Component,
+    vr: *const ValueReference,
+    nvr: usize,
+    value: *mut Integer,
+) -> Status {
+    get_values(
+        c,
+        access("fmi2GetInteger", is_integer, "Integer or Enumeration"),
+        vr,
+        nvr,
+        value,
+        |x| x as Integer,
+    )
+}
+
+/// # Safety
+/// Arrays of `nvr` elements; this FMU has no Boolean variables.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetBoolean(
+    c: Component,
+    vr: *const ValueReference,
+    nvr: usize,
+    value: *mut Boolean,
+) -> Status {
+    get_values(
+        c,
+        access("fmi2GetBoolean", is_none, "Boolean"),
+        vr,
+        nvr,
+        value,
+        |x| x as Boolean,
+    )
+}
+
+/// # Safety
+/// Arrays of `nvr` elements; this FMU has no String variables.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetString(
+    c: Component,
+    vr: *const ValueReference,
+    nvr: usize,
+    value: *mut FmiString,
+) -> Status {
+    get_values(
+        c,
+        access("fmi2GetString", is_none, "String"),
+        vr,
+        nvr,
+        value,
+        |_| std::ptr::null(),
+    )
+}
+
+/// # Safety
+/// Arrays of `nvr` elements, as the FMI 2.0 standard defines them.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetReal(
+    c: Component,
+    vr: *const ValueReference,
+    nvr: usize,
+    value: *const Real,
+) -> Status {
+    set_values(
+        c,
+        access("fmi2SetReal", is_real, "Real"),
+        vr,
+        nvr,
+        value,
+        |x| x,
+    )
+}
+
+/// # Safety
+/// Arrays of `nvr` elements, as the FMI 2.0 standard defines them.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetInteger(
+    c: Component,
+    vr: *const ValueReference,
+    nvr: usize,
+    value: *const Integer,
+) -> Status {
+    set_values(
+        c,
+        access("fmi2SetInteger", is_integer, "Integer or Enumeration"),
+        vr,
+        nvr,
+        value,
+        f64::from,
+    )
+}
+
+/// # Safety
+/// Arrays of `nvr` elements; this FMU has no Boolean variables.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetBoolean(
+    c: Component,
+    vr: *const ValueReference,
+    nvr: usize,
+    value: *const Boolean,
+) -> Status {
+    set_values(
+        c,
+        access("fmi2SetBoolean", is_none, "Boolean"),
+        vr,
+        nvr,
+        value,
+        f64::from,
+    )
+}
+
+/// # Safety
+/// Arrays of `nvr` elements; this FMU has no String variables.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetString(
+    c: Component,
+    vr: *const ValueReference,
+    nvr: usize,
+    value: *const FmiString,
+) -> Status {
+    set_values(
+        c,
+        access("fmi2SetString", is_none, "String"),
+        vr,
+        nvr,
+        value,
+        |_| 0.0,
+    )
+}
+
+/// Takes a snapshot into `*state` (a new one if `*state` is NULL, else overwriting one this
+/// instance handed out).
+///
+/// # Safety
+/// `state` points to an fmi2FMUstate.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetFMUstate(c: Component, state: *mut FmuState) -> Status {
+    with_instance(c, |instance| {
+        if let Err(status) = instance.check_phase("fmi2GetFMUstate", STATE_PHASES) {
+            return status;
+        }
+        let Some(slot) = state.as_mut() else {
+            return null_argument(instance, "fmi2GetFMUstate", "FMUstate");
+        };
+        let snapshot = Snapshot::take(instance);
+        if slot.is_null() {
+            let address = Box::into_raw(Box::new(snapshot));
+            instance.snapshots.push(address as usize);
+            *slot = address as FmuState;
+        } else if instance.snapshots.contains(&(*slot as usize)) {
+            // SAFETY: a live snapshot of this instance.
+            *(*slot as *mut Snapshot) = snapshot;
+        } else {
+            return instance.error("fmi2GetFMUstate: *FMUstate is neither NULL nor a state of this instance: expected NULL or a state from fmi2GetFMUstate of this instance");
+        }
+        Status::Ok
+    })
+}
+
+/// Looks up a snapshot of this instance by its pointer.
+fn own_snapshot<'a>(
+    instance: &Instance,
+    function: &str,
+    state: FmuState,
+) -> Result<&'a mut Snapshot, Status> {
+    if state.is_null() || !instance.snapshots.contains(&(state as usize)) {
+        return Err(instance.error(&format!(
+            "{function}: the FMUstate was not made by this instance (or was freed): expected a state from fmi2GetFMUstate or fmi2DeSerializeFMUstate of this instance"
+        )));
+    }
+    // SAFETY: listed, so it is a live Box<Snapshot> this instance owns.
+    Ok(unsafe { &mut *(state as *mut Snapshot) })
+}
+
+/// # Safety
+/// `state` from fmi2GetFMUstate.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetFMUstate(c: Component, state: FmuState) -> Status {
+    with_instance(c, |instance| {
+        if let Err(status) = instance.check_phase("fmi2SetFMUstate", STATE_PHASES) {
+            return status;
+        }
+        let snapshot = match own_snapshot(instance, "fmi2SetFMUstate", state) {
+            Ok(snapshot) => snapshot.clone(),
+            Err(status) => return status,
+        };
+        match snapshot.restore(instance) {
+            Ok(()) => Status::Ok,
+            Err(message) => instance.error(&format!("fmi2SetFMUstate: {message}")),
+        }
+    })
+}
+
+/// # Safety
+/// `state` points to an fmi2FMUstate from this instance.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2FreeFMUstate(c: Component, state: *mut FmuState) -> Status {
+    with_instance(c, |instance| {
+        let Some(slot) = state.as_mut() else {
+            return null_argument(instance, "fmi2FreeFMUstate", "FMUstate");
+        };
+        if slot.is_null() {
+            return Status::Ok;
+        }
+        if let Err(status) = own_snapshot(instance, "fmi2FreeFMUstate", *slot) {
+            return status;
+        }
+        instance.snapshots.retain(|&a| a != *slot as usize);
+        // SAFETY: it was listed, and is now unlisted, so this is its one drop.
+        drop(Box::from_raw(*slot as *mut Snapshot));
+        *slot = std::ptr::null_mut();
+        Status::Ok
+    })
+}
+
+/// # Safety
+/// `state` from fmi2GetFMUstate; `size` points to a size_t.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
+    c: Component,
+    state: FmuState,
+    size: *mut usize,
+) -> Status {
+    with_instance(c, |instance| {
+        let Some(size) = size.as_mut() else {
+            return null_argument(instance, "fmi2SerializedFMUstateSize", "size");
+        };
+        match own_snapshot(instance, "fmi2SerializedFMUstateSize", state) {
+            Ok(snapshot) => {
+                *size = snapshot.to_bytes().len();
+                Status::Ok
+            }
+            Err(status) => status,
+        }
+    })
+}
+
+/// # Safety
+/// `bytes` has room for `size` bytes.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SerializeFMUstate(
+    c: Component,
+    state: FmuState,
+    bytes: *mut Byte,
+    size: usize,
+) -> Status {
+    with_instance(c, |instance| {
+        let snapshot = match own_snapshot(instance, "fmi2SerializeFMUstate", state) {
+            Ok(snapshot) => snapshot,
+            Err(status) => return status,
+        };
+        let data = snapshot.to_bytes();
+        if size < data.len() {
+            return instance.error(&format!(
+                "fmi2SerializeFMUstate: size = {size} is too small: expected {} bytes (fmi2SerializedFMUstateSize)",
+                data.len()
+            ));
+        }
+        let Some(out) = slice_mut(bytes as *mut u8, data.len()) else {
+            return null_argument(instance, "fmi2SerializeFMUstate", "serializedState");
+        };
+        out.copy_from_slice(&data);
+        Status::Ok
+    })
+}
+
+/// # Safety
+/// `bytes` holds `size` bytes; `state` points to an fmi2FMUstate.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
+    c: Component,
+    bytes: *const Byte,
+    size: usize,
+    state: *mut FmuState,
+) -> Status {
+    with_instance(c, |instance| {
+        let Some(data) = slice(bytes as *const u8, size) else {
+            return null_argument(instance, "fmi2DeSerializeFMUstate", "serializedState");
+        };
+        let Some(slot) = state.as_mut() else {
+            return null_argument(instance, "fmi2DeSerializeFMUstate", "FMUstate");
+        };
+        let snapshot = match Snapshot::from_bytes(data, instance.guid, instance.id) {
+            Ok(snapshot) => snapshot,
+            Err(message) => return instance.error(&format!("fmi2DeSerializeFMUstate: {message}")),
+        };
+        if !slot.is_null() && instance.snapshots.contains(&(*slot as usize)) {
+            *(*slot as *mut Snapshot) = snapshot;
+        } else {
+            let address = Box::into_raw(Box::new(snapshot));
+            instance.snapshots.push(address as usize);
+            *slot = address as FmuState;
+        }
+        Status::Ok
+    })
+}
+
+/// # Safety
+/// `c` from fmi2Instantiate.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
+    c: Component,
+    _unknown: *const ValueReference,
+    _n_unknown: usize,
+    _known: *const ValueReference,
+    _n_known: usize,
+    _dv_known: *const Real,
+    _dv_unknown: *mut Real,
+) -> Status {
+    with_instance(c, |instance| {
+        instance.error(
+            "fmi2GetDirectionalDerivative is not supported (providesDirectionalDerivative = false)",
+        )
+    })
+}
+
+/// # Safety
+/// `c` from fmi2Instantiate.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
+    c: Component,
+    _vr: *const ValueReference,
+    _nvr: usize,
+    _order: *const Integer,
+    _value: *const Real,
+) -> Status {
+    with_instance(c, |instance| {
+        instance.error("fmi2SetRealInputDerivatives is not supported (canInterpolateInputs = false): inputs are held over each step")
+    })
+}
+
+/// # Safety
+/// `c` from fmi2Instantiate.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
+    c: Component,
+    _vr: *const ValueReference,
+    _nvr: usize,
+    _order: *const Integer,
+    _value: *mut Real,
+) -> Status {
+    with_instance(c, |instance| {
+        instance
+            .error("fmi2GetRealOutputDerivatives is not supported (MaxOutputDerivativeOrder = 0)")
+    })
+}
+
+/// # Safety
+/// `c` from fmi2Instantiate.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2DoStep(
+    c: Component,
+    current_communication_point: Real,
+    communication_step_size: Real,
+    _no_set_prior_state: Boolean,
+) -> Status {
+    with_instance(c, |instance| {
+        instance.trace(|| {
+            format!("fmi2DoStep(t = {current_communication_point}, h = {communication_step_size})")
+        });
+        instance.do_step(current_communication_point, communication_step_size)
+    })
+}
+
+/// # Safety
+/// `c` from fmi2Instantiate.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2CancelStep(c: Component) -> Status {
+    with_instance(c, |instance| {
+        instance.error("fmi2CancelStep: fmi2DoStep never returns fmi2Pending here, so there is no step to cancel")
+    })
+}
+
+const STATUS_PHASES: &[Phase] = &[Phase::StepComplete, Phase::StepFailed, Phase::Terminated];
+
+/// # Safety
+/// `value` points to an fmi2Status.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetStatus(c: Component, kind: c_int, value: *mut Status) -> Status {
+    with_instance(c, |instance| {
+        if let Err(status) = instance.check_phase("fmi2GetStatus", STATUS_PHASES) {
+            return status;
+        }
+        let Some(value) = value.as_mut() else {
+            return null_argument(instance, "fmi2GetStatus", "value");
+        };
+        if kind != DO_STEP_STATUS {
+            return instance.error(&format!("fmi2GetStatus: status kind {kind} is not an fmi2Status kind: expected fmi2DoStepStatus ({DO_STEP_STATUS})"));
+        }
+        // Steps are synchronous: the status of the last one is all there is to tell.
+        *value = if instance.phase == Phase::StepFailed {
+            Status::Discard
+        } else {
+            Status::Ok
+        };
+        Status::Ok
+    })
+}
+
+/// # Safety
+/// `value` points to an fmi2Real.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetRealStatus(c: Component, kind: c_int, value: *mut Real) -> Status {
+    with_instance(c, |instance| {
+        if let Err(status) = instance.check_phase("fmi2GetRealStatus", STATUS_PHASES) {
+            return status;
+        }
+        let Some(value) = value.as_mut() else {
+            return null_argument(instance, "fmi2GetRealStatus", "value");
+        };
+        if kind != LAST_SUCCESSFUL_TIME {
+            return instance.error(&format!("fmi2GetRealStatus: status kind {kind}: expected fmi2LastSuccessfulTime ({LAST_SUCCESSFUL_TIME})"));
+        }
+        *value = instance.last_successful_time;
+        Status::Ok
+    })
+}
+
+/// # Safety
+/// `c` from fmi2Instantiate.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetIntegerStatus(
+    c: Component,
+    kind: c_int,
+    _value: *mut Integer,
+) -> Status {
+    with_instance(c, |instance| {
+        instance.error(&format!(
+            "fmi2GetIntegerStatus: status kind {kind}: no Integer status is defined by FMI 2.0"
+        ))
+    })
+}
+
+/// # Safety
+/// `value` points to an fmi2Boolean.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetBooleanStatus(
+    c: Component,
+    kind: c_int,
+    value: *mut Boolean,
+) -> Status {
+    with_instance(c, |instance| {
+        if let Err(status) = instance.check_phase("fmi2GetBooleanStatus", STATUS_PHASES) {
+            return status;
+        }
+        let Some(value) = value.as_mut() else {
+            return null_argument(instance, "fmi2GetBooleanStatus", "value");
+        };
+        if kind != TERMINATED {
+            return instance.error(&format!(
+                "fmi2GetBooleanStatus: status kind {kind}: expected fmi2Terminated ({TERMINATED})"
+            ));
+        }
+        // The slave asks to end once it has reached the stop time, or has ended.
+        let at_stop = instance.stop_time.is_some_and(|stop| instance.time >= stop);
+        *value = if at_stop || instance.phase == Phase::Terminated {
+            TRUE
+        } else {
+            FALSE
+        };
+        Status::Ok
+    })
+}
+
+/// # Safety
+/// `c` from fmi2Instantiate.
+#[no_mangle]
+pub unsafe extern "C" fn fmi2GetStringStatus(
+    c: Component,
+    kind: c_int,
+    _value: *mut FmiString,
+) -> Status {
+    with_instance(c, |instance| {
+        instance.error(&format!(
+            "fmi2GetStringStatus: status kind {kind}: fmi2PendingStatus ({PENDING_STATUS}) is the only one, and no step is ever pending here"
+        ))
+    })
+}

@@ -1,0 +1,423 @@
+//! One FMU instance: the FMI 2.0 co-simulation state machine, shared by every model.
+//!
+//! Every public method checks that the call is legal in the current phase, does its work and
+//! returns the status; every refusal is logged naming the function, what was wrong and what was
+//! expected. The physics is the scene's; this file only moves values and time.
+
+use super::ffi::Status;
+use super::logger::{Logger, CATEGORY_CALLS, CATEGORY_ERROR, CATEGORY_WARNING};
+use crate::interface::values::{check_value, ValueSet};
+use crate::interface::variable::{Causality, Kind, Variability, Variable, LOG_CATEGORIES};
+use crate::scenes::{Model, Scene};
+
+/// Where an instance is in its life (FMI 2.0 co-simulation state machine).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Phase {
+    Instantiated,
+    InitializationMode,
+    StepComplete,
+    StepFailed,
+    Terminated,
+    Error,
+}
+
+impl Phase {
+    fn name(self) -> &'static str {
+        match self {
+            Phase::Instantiated => "Instantiated",
+            Phase::InitializationMode => "InitializationMode",
+            Phase::StepComplete => "StepComplete",
+            Phase::StepFailed => "StepFailed",
+            Phase::Terminated => "Terminated",
+            Phase::Error => "Error",
+        }
+    }
+
+    pub fn code(self) -> f64 {
+        self as u8 as f64
+    }
+
+    pub fn from_code(code: f64) -> Option<Phase> {
+        [
+            Phase::Instantiated,
+            Phase::InitializationMode,
+            Phase::StepComplete,
+            Phase::StepFailed,
+            Phase::Terminated,
+            Phase::Error,
+        ]
+        .into_iter()
+        .find(|p| p.code() == code)
+    }
+}
+
+use Phase::*;
+
+/// The phases in which getters answer (the spec also allows them after an error, for debugging).
+const READABLE: &[Phase] = &[
+    InitializationMode,
+    StepComplete,
+    StepFailed,
+    Terminated,
+    Error,
+];
+/// The phases in which an FMU state may be taken or restored.
+pub const STATE_PHASES: &[Phase] = &[
+    Instantiated,
+    InitializationMode,
+    StepComplete,
+    StepFailed,
+    Terminated,
+    Error,
+];
+
+pub struct Instance {
+    pub id: u64,
+    pub model: &'static Model,
+    pub guid: &'static str,
+    logger: Logger,
+    log_calls: bool,
+    pub phase: Phase,
+    pub values: ValueSet,
+    pub scene: Option<Box<dyn Scene>>,
+    pub start_time: f64,
+    pub stop_time: Option<f64>,
+    pub time: f64,
+    pub last_successful_time: f64,
+    /// Addresses of the FMU states this instance handed out and has not freed.
+    pub snapshots: Vec<usize>,
+}
+
+impl Instance {
+    pub fn new(
+        id: u64,
+        model: &'static Model,
+        guid: &'static str,
+        logger: Logger,
+        log_calls: bool,
+    ) -> Self {
+        Instance {
+            id,
+            model,
+            guid,
+            logger,
+            log_calls,
+            phase: Instantiated,
+            values: ValueSet::start(model.table),
+            scene: None,
+            start_time: 0.0,
+            stop_time: None,
+            time: 0.0,
+            last_successful_time: 0.0,
+            snapshots: Vec::new(),
+        }
+    }
+
+    pub fn error(&self, message: &str) -> Status {
+        self.logger.log(Status::Error, CATEGORY_ERROR, message);
+        Status::Error
+    }
+
+    pub fn warning(&self, message: &str) {
+        self.logger.log(Status::Warning, CATEGORY_WARNING, message);
+    }
+
+    pub fn trace(&self, message: impl FnOnce() -> String) {
+        if self.log_calls {
+            self.logger.log(Status::Ok, CATEGORY_CALLS, &message());
+        }
+    }
+
+    /// Refuses a call outside `allowed` phases, naming the phase it needs.
+    pub fn check_phase(&self, function: &str, allowed: &[Phase]) -> Result<(), Status> {
+        if allowed.contains(&self.phase) {
+            return Ok(());
+        }
+        let expected: Vec<&str> = allowed.iter().map(|p| p.name()).collect();
+        Err(self.error(&format!(
+            "{function} is not allowed in state {}: expected {}",
+            self.phase.name(),
+            expected.join(" or ")
+        )))
+    }
+
+    pub fn set_debug_logging(&mut self, logging_on: bool, categories: &[String]) -> Status {
+        for category in categories {
+            if !LOG_CATEGORIES.iter().any(|(name, _)| name == category) {
+                let known: Vec<&str> = LOG_CATEGORIES.iter().map(|(name, _)| *name).collect();
+                return self.error(&format!(
+                    "fmi2SetDebugLogging: unknown log category \"{category}\": expected one of {}",
+                    known.join(", ")
+                ));
+            }
+        }
+        // Errors and warnings are always reported; the switch governs the call trace.
+        if categories.is_empty() || categories.iter().any(|c| c == CATEGORY_CALLS) {
+            self.log_calls = logging_on;
+        }
+        Status::Ok
+    }
+
+    pub fn setup_experiment(
+        &mut self,
+        tolerance: Option<f64>,
+        start_time: f64,
+        stop_time: Option<f64>,
+    ) -> Status {
+        if let Err(status) = self.check_phase("fmi2SetupExperiment", &[Instantiated]) {
+            return status;
+        }
+        if !start_time.is_finite() {
+            return self.error(&format!(
+                "fmi2SetupExperiment: startTime = {start_time}: expected a finite time"
+            ));
+        }
+        if let Some(stop) = stop_time {
+            if stop.is_nan() || stop < start_time {
+                return self.error(&format!(
+                    "fmi2SetupExperiment: stopTime = {stop}: expected a time >= startTime = {start_time}"
+                ));
+            }
+        }
+        if let Some(tolerance) = tolerance {
+            if tolerance.is_nan() || tolerance <= 0.0 {
+                return self.error(&format!(
+                    "fmi2SetupExperiment: tolerance = {tolerance}: expected > 0"
+                ));
+            }
+        }
+        self.start_time = start_time;
+        self.stop_time = stop_time;
+        self.time = start_time;
+        self.last_successful_time = start_time;
+        Status::Ok
+    }
+
+    pub fn enter_initialization_mode(&mut self) -> Status {
+        if let Err(status) = self.check_phase("fmi2EnterInitializationMode", &[Instantiated]) {
+            return status;
+        }
+        self.phase = InitializationMode;
+        Status::Ok
+    }
+
+    pub fn exit_initialization_mode(&mut self) -> Status {
+        if let Err(status) = self.check_phase("fmi2ExitInitializationMode", &[InitializationMode]) {
+            return status;
+        }
+        match (self.model.build)(&self.values, self.start_time) {
+            Ok(scene) => {
+                self.scene = Some(scene);
+                self.time = self.start_time;
+                self.last_successful_time = self.start_time;
+                self.phase = StepComplete;
+                Status::Ok
+            }
+            Err(message) => self.error(&format!("fmi2ExitInitializationMode: {message}")),
+        }
+    }
+
+    pub fn terminate(&mut self) -> Status {
+        if let Err(status) = self.check_phase("fmi2Terminate", &[StepComplete, StepFailed, Error]) {
+            return status;
+        }
+        self.phase = Terminated;
+        Status::Ok
+    }
+
+    /// Back to the state right after fmi2Instantiate: start values, no scene, time 0.
+    pub fn reset(&mut self) -> Status {
+        self.phase = Instantiated;
+        self.values = ValueSet::start(self.model.table);
+        self.scene = None;
+        self.start_time = 0.0;
+        self.stop_time = None;
+        self.time = 0.0;
+        self.last_successful_time = 0.0;
+        Status::Ok
+    }
+
+    fn variable(
+        &self,
+        function: &str,
+        value_reference: u32,
+        accepts: fn(&Kind) -> bool,
+        type_name: &str,
+    ) -> Result<&'static Variable, Status> {
+        match self.model.table.variable(value_reference) {
+            Some(var) if accepts(&var.kind) => Ok(var),
+            Some(var) => Err(self.error(&format!(
+                "{function}: value reference {value_reference} is {}, not a {type_name} variable",
+                var.name
+            ))),
+            None => Err(self.error(&format!(
+                "{function}: unknown value reference {value_reference}: {} has no variable with it",
+                self.model.table.model_identifier
+            ))),
+        }
+    }
+
+    /// Outputs follow the current state and inputs; in initialisation mode they are computed
+    /// from a scene built from the values set so far.
+    fn refresh_outputs(&mut self, function: &str) -> Result<(), Status> {
+        if let Some(scene) = &self.scene {
+            scene.write_outputs(&mut self.values);
+            return Ok(());
+        }
+        match (self.model.build)(&self.values, self.start_time) {
+            Ok(scene) => {
+                scene.write_outputs(&mut self.values);
+                Ok(())
+            }
+            Err(message) => Err(self.error(&format!(
+                "{function}: outputs cannot be computed: {message}"
+            ))),
+        }
+    }
+
+    /// Reads values of one FMI type; `accepts` says which variable kinds that type covers.
+    pub fn get(
+        &mut self,
+        function: &str,
+        value_references: &[u32],
+        out: &mut [f64],
+        accepts: fn(&Kind) -> bool,
+        type_name: &str,
+    ) -> Status {
+        if let Err(status) = self.check_phase(function, READABLE) {
+            return status;
+        }
+        let mut vars = Vec::with_capacity(value_references.len());
+        for &vr in value_references {
+            match self.variable(function, vr, accepts, type_name) {
+                Ok(var) => vars.push(var),
+                Err(status) => return status,
+            }
+        }
+        if vars.iter().any(|v| v.causality == Causality::Output) {
+            if let Err(status) = self.refresh_outputs(function) {
+                return status;
+            }
+        }
+        for (slot, var) in out.iter_mut().zip(&vars) {
+            *slot = self.values.real(var.value_reference);
+        }
+        Status::Ok
+    }
+
+    /// Writes values of one FMI type after checking them all: either every value is stored or
+    /// none is.
+    pub fn set(
+        &mut self,
+        function: &str,
+        value_references: &[u32],
+        values: &[f64],
+        accepts: fn(&Kind) -> bool,
+        type_name: &str,
+    ) -> Status {
+        if let Err(status) =
+            self.check_phase(function, &[Instantiated, InitializationMode, StepComplete])
+        {
+            return status;
+        }
+        for (&vr, &value) in value_references.iter().zip(values) {
+            let var = match self.variable(function, vr, accepts, type_name) {
+                Ok(var) => var,
+                Err(status) => return status,
+            };
+            let writable = match var.causality {
+                Causality::Input => true,
+                Causality::Parameter => {
+                    self.phase != StepComplete || var.variability == Variability::Tunable
+                }
+                Causality::Output | Causality::Independent => {
+                    return self.error(&format!(
+                        "{function}: {} is an output: it can be read, not set",
+                        var.name
+                    ))
+                }
+            };
+            if !writable {
+                return self.error(&format!(
+                    "{function}: {} is a fixed parameter: it can be set only before fmi2ExitInitializationMode (current state {})",
+                    var.name,
+                    self.phase.name()
+                ));
+            }
+            if let Err(message) = check_value(self.model.table, var, value) {
+                return self.error(&format!("{function}: {message}"));
+            }
+        }
+        for (&vr, &value) in value_references.iter().zip(values) {
+            self.values.set(vr, value);
+        }
+        Status::Ok
+    }
+
+    pub fn do_step(&mut self, current_communication_point: f64, step: f64) -> Status {
+        if let Err(status) = self.check_phase("fmi2DoStep", &[StepComplete]) {
+            return status;
+        }
+        if !step.is_finite() || step <= 0.0 {
+            return self.error(&format!(
+                "fmi2DoStep: communicationStepSize = {step}: expected a finite step > 0"
+            ));
+        }
+        let tolerance = 1e-12 * (1.0 + self.time.abs()) + 4.0 * f64::EPSILON * step;
+        if !current_communication_point.is_finite()
+            || (current_communication_point - self.time).abs() > tolerance
+        {
+            return self.error(&format!(
+                "fmi2DoStep: expected currentCommunicationPoint = {} but was {current_communication_point}",
+                self.time
+            ));
+        }
+        if let Some(stop) = self.stop_time {
+            if current_communication_point + step > stop * (1.0 + 1e-12) + 1e-12 {
+                return self.error(&format!(
+                    "fmi2DoStep: the step to t = {} passes stopTime = {stop} set in fmi2SetupExperiment",
+                    current_communication_point + step
+                ));
+            }
+        }
+        let Some(scene) = self.scene.as_mut() else {
+            return self
+                .error("fmi2DoStep: no scene: fmi2ExitInitializationMode has not succeeded");
+        };
+        match scene.do_step(step, &self.values) {
+            Ok(()) => {
+                scene.write_outputs(&mut self.values);
+                // The scenes check their states; this is the last line of defence: no NaN ever
+                // reaches the master silently.
+                let bad = self.model.table.variables.iter().find(|v| {
+                    v.causality == Causality::Output
+                        && !self.values.real(v.value_reference).is_finite()
+                });
+                if let Some(var) = bad {
+                    self.phase = Error;
+                    return self.error(&format!(
+                        "fmi2DoStep: output {} became {} in the step from t = {current_communication_point} by {step}; expected a finite value",
+                        var.name,
+                        self.values.real(var.value_reference)
+                    ));
+                }
+                self.time = scene.time();
+                self.last_successful_time = self.time;
+                Status::Ok
+            }
+            Err(message) => {
+                self.phase = StepFailed;
+                self.last_successful_time = self.time;
+                self.logger.log(
+                    Status::Discard,
+                    CATEGORY_ERROR,
+                    &format!(
+                        "fmi2DoStep: the step from t = {current_communication_point} by {step} could not be completed: {message}; lastSuccessfulTime = {}",
+                        self.last_successful_time
+                    ),
+                );
+                Status::Discard
+            }
+        }
+    }
+}

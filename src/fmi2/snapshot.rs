@@ -1,0 +1,182 @@
+//! FMU states: a full copy of an instance's dynamic data, and its byte form.
+//!
+//! The bytes carry a magic word, a format version, the model's GUID and a checksum, so truncated,
+//! corrupted or foreign data is refused with a message instead of being loaded.
+
+use super::instance::{Instance, Phase};
+
+const MAGIC: &[u8; 8] = b"FRICFMU\x01";
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Snapshot {
+    /// The instance that took it: a state is restored only into its own instance.
+    pub owner: u64,
+    pub guid: String,
+    pub phase: Phase,
+    pub start_time: f64,
+    pub stop_time: Option<f64>,
+    pub time: f64,
+    pub last_successful_time: f64,
+    pub values: Vec<f64>,
+    /// None before initialisation has finished.
+    pub scene: Option<Vec<f64>>,
+}
+
+impl Snapshot {
+    pub fn take(instance: &Instance) -> Snapshot {
+        Snapshot {
+            owner: instance.id,
+            guid: instance.guid.to_string(),
+            phase: instance.phase,
+            start_time: instance.start_time,
+            stop_time: instance.stop_time,
+            time: instance.time,
+            last_successful_time: instance.last_successful_time,
+            values: instance.values.as_slice().to_vec(),
+            scene: instance.scene.as_ref().map(|s| s.save()),
+        }
+    }
+
+    /// Puts the instance back to this state; the error says why it cannot.
+    pub fn restore(&self, instance: &mut Instance) -> Result<(), String> {
+        if self.owner != instance.id {
+            return Err(
+                "the FMU state was taken from another instance: expected a state of this instance"
+                    .into(),
+            );
+        }
+        let mut values = instance.values.clone();
+        if !values.load(&self.values) {
+            return Err(format!(
+                "the FMU state holds {} values; expected {}",
+                self.values.len(),
+                instance.values.as_slice().len()
+            ));
+        }
+        let scene = match &self.scene {
+            None => None,
+            Some(state) => {
+                let mut scene = (instance.model.build)(&values, self.start_time)?;
+                scene.restore(state)?;
+                Some(scene)
+            }
+        };
+        instance.values = values;
+        instance.scene = scene;
+        instance.phase = self.phase;
+        instance.start_time = self.start_time;
+        instance.stop_time = self.stop_time;
+        instance.time = self.time;
+        instance.last_successful_time = self.last_successful_time;
+        Ok(())
+    }
+
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut numbers = vec![
+            self.phase.code(),
+            self.start_time,
+            self.stop_time.unwrap_or(f64::NAN),
+            self.time,
+            self.last_successful_time,
+            self.values.len() as f64,
+        ];
+        numbers.extend(&self.values);
+        if let Some(scene) = &self.scene {
+            numbers.push(scene.len() as f64);
+            numbers.extend(scene);
+        } else {
+            numbers.push(-1.0);
+        }
+        let mut bytes = Vec::with_capacity(8 + 4 + self.guid.len() + 8 * numbers.len() + 8);
+        bytes.extend(MAGIC);
+        bytes.extend((self.guid.len() as u32).to_le_bytes());
+        bytes.extend(self.guid.as_bytes());
+        for x in numbers {
+            bytes.extend(x.to_le_bytes());
+        }
+        let sum = checksum(&bytes);
+        bytes.extend(sum.to_le_bytes());
+        bytes
+    }
+
+    /// Reads bytes written by [`Snapshot::to_bytes`] for the model with `guid`, owned by `owner`.
+    pub fn from_bytes(bytes: &[u8], guid: &str, owner: u64) -> Result<Snapshot, String> {
+        let corrupt = |what: &str| format!("the serialized FMU state is not valid: {what}");
+        if bytes.len() < MAGIC.len() + 4 + 8 || &bytes[..MAGIC.len()] != MAGIC {
+            return Err(corrupt(
+                "it does not start with this FMU's header (truncated or foreign data)",
+            ));
+        }
+        let (body, sum) = bytes.split_at(bytes.len() - 8);
+        if checksum(body).to_le_bytes() != sum {
+            return Err(corrupt(
+                "its checksum does not match (truncated or corrupted)",
+            ));
+        }
+        let mut rest = &body[MAGIC.len()..];
+        let guid_len =
+            u32::from_le_bytes(rest[..4].try_into().map_err(|_| corrupt("short header"))?) as usize;
+        rest = &rest[4..];
+        if rest.len() < guid_len || &rest[..guid_len] != guid.as_bytes() {
+            return Err(corrupt(&format!(
+                "it belongs to another model: expected GUID {guid}"
+            )));
+        }
+        rest = &rest[guid_len..];
+        if rest.len() % 8 != 0 {
+            return Err(corrupt("its length is not a whole number of values"));
+        }
+        let numbers: Vec<f64> = rest
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
+            .collect();
+        let mut it = numbers.into_iter();
+        let mut next = |what: &str| {
+            it.next()
+                .ok_or_else(|| corrupt(&format!("it ends before {what}")))
+        };
+        let phase =
+            Phase::from_code(next("the state")?).ok_or_else(|| corrupt("unknown state code"))?;
+        let start_time = next("the start time")?;
+        let stop = next("the stop time")?;
+        let time = next("the time")?;
+        let last_successful_time = next("the last successful time")?;
+        let count = |n: f64| (n >= 0.0 && n.fract() == 0.0 && n < 1e6).then_some(n as usize);
+        let n_values = count(next("the value count")?).ok_or_else(|| corrupt("bad value count"))?;
+        let values = (0..n_values)
+            .map(|_| next("the values"))
+            .collect::<Result<Vec<_>, _>>()?;
+        let n_scene = next("the scene state")?;
+        let scene = if n_scene == -1.0 {
+            None
+        } else {
+            let n = count(n_scene).ok_or_else(|| corrupt("bad state length"))?;
+            Some(
+                (0..n)
+                    .map(|_| next("the scene state"))
+                    .collect::<Result<Vec<_>, _>>()?,
+            )
+        };
+        if next("its end").is_ok() {
+            return Err(corrupt("it has trailing data"));
+        }
+        Ok(Snapshot {
+            owner,
+            guid: guid.to_string(),
+            phase,
+            start_time,
+            stop_time: (!stop.is_nan()).then_some(stop),
+            time,
+            last_successful_time,
+            values,
+            scene,
+        })
+    }
+}
+
+/// FNV-1a 64: enough to catch truncation and bit flips, not meant against forgery.
+fn checksum(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}

@@ -1,0 +1,228 @@
+//! LuGre contact in the sliding plane (seed 000, eq. 2-6): a bristle `z = N - M` from the support
+//! point M to the body point N, deflected by both motions and slipping back at a rate set by the
+//! Stribeck curve.
+//!
+//! `g(v)` here is a deflection (m), as in the paper: the Stribeck force divided by kt.
+
+use nalgebra::Vector2;
+
+/// How the bristle slips back (SPEC.md, Scene T).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SlipLaw {
+    /// `|v1|/g(v1) + |v2|/g(v2)`: each motion slips the contact on its own, the limit of the
+    /// paper's two-phase step.
+    Split,
+    /// `|v1 + v2|/g(v1 + v2)`: slip on the total radial rate.
+    Total,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LuGre2d {
+    /// Tangential contact stiffness kt (N/m).
+    pub kt: f64,
+    /// Coulomb force FC (N).
+    pub fc: f64,
+    /// Static force FS (N).
+    pub fs: f64,
+    /// Stribeck velocity vs, also the damping cut-off ve (m/s).
+    pub vs: f64,
+    /// Contact damping without sliding, 2 zeta sqrt(m kt) (N s/m), eq. 5.
+    pub h0: f64,
+    /// Viscous coefficient hv (N s/m).
+    pub hv: f64,
+}
+
+/// The contact's state of motion at one instant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contact {
+    /// Unit vector N - M (along the relative velocity when the bristle is undeflected).
+    pub e: Vector2<f64>,
+    /// Deflection |z| (m).
+    pub s: f64,
+    /// Radial rate from the body's motion, e . v_body (m/s).
+    pub v1: f64,
+    /// Radial rate from the support's motion, -e . v_M (m/s).
+    pub v2: f64,
+    /// Bristle rate dz/dt (m/s).
+    pub zdot: Vector2<f64>,
+    /// Magnitude of the friction force FF (eq. 2), N.
+    pub ff: f64,
+}
+
+impl Contact {
+    /// FFx = FF cos(beta): the force resisting +x.
+    pub fn ffx(&self) -> f64 {
+        self.ff * self.e.x
+    }
+
+    /// FFy = FF sin(beta): the y-force acting on the body (M - N = s (-cos beta, sin beta)).
+    pub fn ffy(&self) -> f64 {
+        -self.ff * self.e.y
+    }
+
+    /// beta, the direction of the deflection (eq. 26-29).
+    pub fn beta(&self) -> f64 {
+        (-self.e.y).atan2(self.e.x)
+    }
+}
+
+impl LuGre2d {
+    /// Stribeck deflection g(v) = (FC + (FS - FC) exp(-(v/vs)^2)) / kt (eq. 4), m.
+    pub fn g(&self, v: f64) -> f64 {
+        (self.fc + (self.fs - self.fc) * (-(v / self.vs).powi(2)).exp()) / self.kt
+    }
+
+    /// Contact damping ht(v) = 2 zeta sqrt(m kt) exp(-(v/ve)^2), ve = vs (eq. 6).
+    pub fn ht(&self, v: f64) -> f64 {
+        self.h0 * (-(v / self.vs).powi(2)).exp()
+    }
+
+    /// Slip rate |v|/g(v) (1/s) of eq. 3.
+    pub fn slip_rate(&self, v: f64) -> f64 {
+        v.abs() / self.g(v)
+    }
+
+    /// Slip rate of the bristle for the radial rates v1 (body) and v2 (support).
+    pub fn slip(&self, law: SlipLaw, v1: f64, v2: f64) -> f64 {
+        match law {
+            SlipLaw::Split => self.slip_rate(v1) + self.slip_rate(v2),
+            SlipLaw::Total => self.slip_rate(v1 + v2),
+        }
+    }
+
+    /// FF = kt s + ht(vr) sdot + hv vr (eq. 2).
+    pub fn force(&self, s: f64, sdot: f64, vr: f64) -> f64 {
+        self.kt * s + self.ht(vr) * sdot + self.hv * vr
+    }
+
+    /// The contact for bristle `z`, body velocity `v_body` and velocity `v_m` of the support point
+    /// M (eta times the support's): the continuous-time law of SPEC.md, Scene T.
+    pub fn contact(
+        &self,
+        law: SlipLaw,
+        z: Vector2<f64>,
+        v_body: Vector2<f64>,
+        v_m: Vector2<f64>,
+    ) -> Contact {
+        let w = v_body - v_m;
+        let s = z.norm();
+        let e = direction(z, w);
+        let v1 = e.dot(&v_body);
+        let v2 = -e.dot(&v_m);
+        let zdot = w - self.slip(law, v1, v2) * z;
+        let ff = self.force(s, e.dot(&zdot), v1 + v2);
+        Contact {
+            e,
+            s,
+            v1,
+            v2,
+            zdot,
+            ff,
+        }
+    }
+}
+
+/// The unit vector of `z`; for `z = 0` the one the bristle is about to take, along the relative
+/// velocity `w` (so the force at s = 0 is the damping of 1D LuGre, -(ht + hv) w); +x if both vanish.
+pub fn direction(z: Vector2<f64>, w: Vector2<f64>) -> Vector2<f64> {
+    let s = z.norm();
+    if s > 0.0 {
+        z / s
+    } else {
+        let speed = w.norm();
+        if speed > 0.0 {
+            w / speed
+        } else {
+            Vector2::new(1.0, 0.0)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn law() -> LuGre2d {
+        let fc = 0.178 * 0.56 * 9.81;
+        LuGre2d {
+            kt: 6.286e7,
+            fc,
+            fs: 1.1 * fc,
+            vs: 1e-6,
+            h0: 2.0 * (0.56f64 * 6.286e7).sqrt(),
+            hv: 0.3,
+        }
+    }
+
+    /// Oracle: eq. 4 and 6 at v = 0 and far beyond vs.
+    #[test]
+    fn stribeck_and_damping_limits() {
+        let l = law();
+        assert!((l.g(0.0) * l.kt - l.fs).abs() < 1e-15);
+        assert!((l.g(1e-3) * l.kt - l.fc).abs() < 1e-15);
+        assert_eq!(l.ht(0.0), l.h0);
+        assert_eq!(l.ht(1e-3), 0.0);
+    }
+
+    /// Oracle: along x the 2D law is 1D LuGre, F = kt z + ht(v) z' + hv v, z' = v - |v|/g(v) z,
+    /// for either sign of the deflection and the velocity.
+    #[test]
+    fn one_dimensional_motion_is_classical_lugre() {
+        let l = law();
+        for (z, v) in [(1e-8, 3e-7), (-1e-8, 3e-7), (1.2e-8, -2e-6), (-4e-9, -5e-4)] {
+            for slip in [SlipLaw::Split, SlipLaw::Total] {
+                let c = l.contact(
+                    slip,
+                    Vector2::new(z, 0.0),
+                    Vector2::new(v, 0.0),
+                    Vector2::zeros(),
+                );
+                let zdot = v - v.abs() / l.g(v) * z;
+                let f = l.kt * z + l.ht(v) * zdot + l.hv * v;
+                assert!((c.zdot.x - zdot).abs() <= 1e-15 * v.abs().max(1e-9));
+                assert!((c.ffx() - f).abs() <= 1e-12 * f.abs(), "{} vs {f}", c.ffx());
+                assert_eq!(c.ffy(), 0.0);
+            }
+        }
+    }
+
+    /// Oracle: with the body still and the support moving, the bristle sees -v_M: 1D LuGre in
+    /// the support's velocity, along y.
+    #[test]
+    fn support_motion_alone_is_lugre_along_y() {
+        let l = law();
+        let (z, vm) = (7e-9, 4e-7);
+        let c = l.contact(
+            SlipLaw::Split,
+            Vector2::new(0.0, z),
+            Vector2::zeros(),
+            Vector2::new(0.0, vm),
+        );
+        let v = -vm;
+        let zdot = v - v.abs() / l.g(v) * z;
+        let f = l.kt * z + l.ht(v) * zdot + l.hv * v;
+        assert!((c.zdot.y - zdot).abs() < 1e-20);
+        // The y-force on the body is -F (FFy = -FF e_y).
+        assert!((c.ffy() + f).abs() <= 1e-12 * f.abs());
+    }
+
+    /// The slip term is continuous at z = 0 and the split and total laws agree when only one
+    /// motion is present.
+    #[test]
+    fn slip_laws_agree_with_one_motion_and_vanish_at_zero_deflection() {
+        let l = law();
+        let v_body = Vector2::new(3e-4, -1e-4);
+        let tiny = Vector2::new(1e-30, 2e-30);
+        let c = l.contact(SlipLaw::Split, tiny, v_body, Vector2::zeros());
+        assert!((c.zdot - v_body).norm() < 1e-18);
+        let z = Vector2::new(1e-8, 5e-9);
+        let a = l.contact(SlipLaw::Split, z, v_body, Vector2::zeros());
+        let b = l.contact(SlipLaw::Total, z, v_body, Vector2::zeros());
+        assert!((a.zdot - b.zdot).norm() < 1e-18);
+        // With both motions the laws differ: |v1| + |v2| >= |v1 + v2|.
+        let vm = Vector2::new(0.0, 1e-3);
+        let a = l.contact(SlipLaw::Split, z, v_body, vm);
+        let b = l.contact(SlipLaw::Total, z, v_body, vm);
+        assert!(l.slip(SlipLaw::Split, a.v1, a.v2) > l.slip(SlipLaw::Total, b.v1, b.v2));
+    }
+}

@@ -1,0 +1,116 @@
+//! Short constructors that keep the per-model tables readable.
+
+use super::variable::{Causality, Kind, Variability, Variable};
+
+/// A fixed Real parameter with an inclusive range; `f64::INFINITY` bounds are left open.
+pub const fn real_parameter(
+    name: &'static str,
+    value_reference: u32,
+    description: &'static str,
+    start: f64,
+    unit: &'static str,
+    min: f64,
+    max: f64,
+) -> Variable {
+    Variable {
+        name,
+        value_reference,
+        description,
+        causality: Causality::Parameter,
+        variability: Variability::Fixed,
+        kind: Kind::Real {
+            start,
+            unit,
+            min,
+            max,
+        },
+        depends_on: &[],
+    }
+}
+
+/// A fixed Integer parameter with an inclusive range.
+pub const fn integer_parameter(
+    name: &'static str,
+    value_reference: u32,
+    description: &'static str,
+    start: i32,
+    min: i32,
+    max: i32,
+) -> Variable {
+    Variable {
+        name,
+        value_reference,
+        description,
+        causality: Causality::Parameter,
+        variability: Variability::Fixed,
+        kind: Kind::Integer { start, min, max },
+        depends_on: &[],
+    }
+}
+
+/// A fixed Enumeration parameter; `start` is the item's integer value (items count from 1).
+pub const fn enum_parameter(
+    name: &'static str,
+    value_reference: u32,
+    description: &'static str,
+    type_name: &'static str,
+    start: i32,
+) -> Variable {
+    Variable {
+        name,
+        value_reference,
+        description,
+        causality: Causality::Parameter,
+        variability: Variability::Fixed,
+        kind: Kind::Enumeration { type_name, start },
+        depends_on: &[],
+    }
+}
+
+/// A continuous Real input with a start value and range.
+pub const fn real_input(
+    name: &'static str,
+    value_reference: u32,
+    description: &'static str,
+    start: f64,
+    unit: &'static str,
+) -> Variable {
+    Variable {
+        name,
+        value_reference,
+        description,
+        causality: Causality::Input,
+        variability: Variability::Continuous,
+        kind: Kind::Real {
+            start,
+            unit,
+            min: f64::NEG_INFINITY,
+            max: f64::INFINITY,
+        },
+        depends_on: &[],
+    }
+}
+
+/// A continuous Real output (initial="calculated", so it has no start value in the XML).
+pub const fn real_output(
+    name: &'static str,
+    value_reference: u32,
+    description: &'static str,
+    unit: &'static str,
+    depends_on: &'static [u32],
+) -> Variable {
+    Variable {
+        name,
+        value_reference,
+        description,
+        causality: Causality::Output,
+        variability: Variability::Continuous,
+        kind: Kind::Real {
+            start: 0.0,
+            unit,
+            min: f64::NEG_INFINITY,
+            max: f64::INFINITY,
+        },
+        depends_on,
+    }
+}

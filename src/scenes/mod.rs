@@ -1,0 +1,69 @@
+//! Scenes: one file per model. A scene owns its state, its equations and its outputs; it reads
+//! parameters and inputs from a [`ValueSet`] and knows nothing of FMI.
+
+pub mod longitudinal;
+pub mod period_mean;
+pub mod transverse;
+
+use crate::interface::values::ValueSet;
+use crate::interface::variable::ModelTable;
+
+/// A model that can be advanced in time. Errors are messages for the user: what was wrong and
+/// what was expected.
+pub trait Scene: Send {
+    /// Advances from the scene's current time by `h > 0`, reading inputs from `values`.
+    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String>;
+
+    /// Writes every output variable into `values`, reading the inputs' current values there
+    /// (outputs with direct feedthrough follow an input set after the last step).
+    fn write_outputs(&self, values: &mut ValueSet);
+
+    /// The scene's current time.
+    fn time(&self) -> f64;
+
+    /// The dynamic state as numbers (parameters live in the [`ValueSet`]).
+    fn save(&self) -> Vec<f64>;
+
+    /// Restores a state written by [`Scene::save`] of a scene built from the same values.
+    fn restore(&mut self, state: &[f64]) -> Result<(), String>;
+}
+
+/// Builds a scene at `start_time` from parameter values, refusing inconsistent ones.
+pub type Builder = fn(values: &ValueSet, start_time: f64) -> Result<Box<dyn Scene>, String>;
+
+/// A model this crate exports: its interface and how to build it.
+pub struct Model {
+    pub table: &'static ModelTable,
+    pub build: Builder,
+}
+
+pub const MODELS: &[Model] = &[
+    Model {
+        table: &crate::interface::longitudinal::TABLE,
+        build: longitudinal::build,
+    },
+    Model {
+        table: &crate::interface::transverse::TABLE,
+        build: transverse::build,
+    },
+];
+
+pub fn model(model_identifier: &str) -> Option<&'static Model> {
+    MODELS
+        .iter()
+        .find(|m| m.table.model_identifier == model_identifier)
+}
+
+/// Checks a strictly positive parameter, with the message the FMI logger shows otherwise.
+pub fn require_positive(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
+    let x = values.real(value_reference);
+    if x > 0.0 && x.is_finite() {
+        Ok(x)
+    } else {
+        let name = values
+            .table
+            .variable(value_reference)
+            .map_or("?", |v| v.name);
+        Err(format!("{name} = {x} is out of range: expected {name} > 0"))
+    }
+}

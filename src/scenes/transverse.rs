@@ -1,0 +1,489 @@
+//! Scene T: a body pulled over a support vibrating across the sliding direction, with a 2D LuGre
+//! contact (seed 000; SPEC.md "Scene T").
+//!
+//! State `[x, x', y, y', z_x, z_y, lambda, q]`: body position and velocity, the bristle
+//! `z = N - M`, the drive stretch `lambda = vd t - x` (a state of its own so Fd does not lose
+//! digits to `vd t - x` in long runs) and `q`, the integral of FFx since the last sub-step
+//! boundary, which feeds [`PeriodMean`]. Sub-steps end on communication points and vibration
+//! period boundaries; the continuous-time solvers integrate the ODE of SPEC.md, `two_phase` runs
+//! the paper's own scheme on the same state.
+
+mod two_phase;
+
+use super::period_mean::PeriodMean;
+use super::{require_positive, Scene};
+use crate::friction::lugre2d::{Contact, LuGre2d, SlipLaw};
+use crate::interface::transverse::vr;
+use crate::interface::values::ValueSet;
+use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
+use crate::solve::rk4::Rk4;
+use crate::solve::{Integrator, Ode, Work, MAX_DIM};
+use nalgebra::Vector2;
+use std::f64::consts::TAU;
+
+const DIM: usize = 8;
+const X: usize = 0;
+const VX: usize = 1;
+const Y: usize = 2;
+const VY: usize = 3;
+const ZX: usize = 4;
+const ZY: usize = 5;
+const LAMBDA: usize = 6;
+const Q: usize = 7;
+
+/// Half-width of the band |v1 + v2| < BAND vs where ht and g vary; dopri5 ends steps on its
+/// edges so the damping pulse inside (tens of ns wide at the paper's values) is never stepped
+/// over. exp(-BAND^2) ~ 1e-7 outside.
+const BAND: f64 = 4.0;
+
+/// Everything the equations need, fixed at build time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Params {
+    pub law: LuGre2d,
+    pub slip: SlipLaw,
+    pub m: f64,
+    pub kd: f64,
+    pub hd: f64,
+    pub eta: f64,
+    pub va: f64,
+    pub f: f64,
+    /// Body held at x = y = 0 (Fig. 4b).
+    pub held: bool,
+}
+
+impl Params {
+    /// The velocity of the contact point M carried by the support: eta * (0, yp').
+    pub fn support_velocity(&self, t: f64) -> Vector2<f64> {
+        // The phase from t*f's fractional part keeps cos accurate however long the run.
+        Vector2::new(0.0, self.eta * self.va * (TAU * (t * self.f).fract()).cos())
+    }
+
+    /// Support displacement yp = u0 sin(wt), u0 = va/w.
+    pub fn support_position(&self, t: f64) -> f64 {
+        self.va / (TAU * self.f) * (TAU * (t * self.f).fract()).sin()
+    }
+
+    pub fn contact(&self, t: f64, y: &[f64]) -> Contact {
+        let v_body = if self.held {
+            Vector2::zeros()
+        } else {
+            Vector2::new(y[VX], y[VY])
+        };
+        self.law.contact(
+            self.slip,
+            Vector2::new(y[ZX], y[ZY]),
+            v_body,
+            self.support_velocity(t),
+        )
+    }
+
+    pub fn drive_force(&self, y: &[f64], vd: f64) -> f64 {
+        let vx = if self.held { 0.0 } else { y[VX] };
+        self.kd * y[LAMBDA] + self.hd * (vd - vx)
+    }
+}
+
+/// The ODE of SPEC.md with the drive velocity held at `vd`.
+struct Equations<'a> {
+    p: &'a Params,
+    vd: f64,
+}
+
+impl Ode for Equations<'_> {
+    fn dim(&self) -> usize {
+        DIM
+    }
+
+    fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        let p = self.p;
+        let c = p.contact(t, y);
+        if p.held {
+            dydt[X..=VY].fill(0.0);
+            dydt[LAMBDA] = self.vd;
+        } else {
+            let fd = p.drive_force(y, self.vd);
+            dydt[X] = y[VX];
+            dydt[VX] = (fd - c.ffx()) / p.m;
+            dydt[Y] = y[VY];
+            dydt[VY] = c.ffy() / p.m;
+            dydt[LAMBDA] = self.vd - y[VX];
+        }
+        dydt[ZX] = c.zdot.x;
+        dydt[ZY] = c.zdot.y;
+        dydt[Q] = c.ffx();
+    }
+}
+
+impl Switching for Equations<'_> {
+    fn switches(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
+        let c = self.p.contact(t, y);
+        let vr = c.v1 + c.v2;
+        let band = BAND * self.p.law.vs;
+        out[0] = vr - band;
+        out[1] = vr + band;
+        match self.p.slip {
+            // |v1| and |v2| have kinks.
+            SlipLaw::Split => {
+                out[2] = c.v1;
+                out[3] = c.v2;
+                4
+            }
+            SlipLaw::Total => {
+                out[2] = vr;
+                3
+            }
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Solver {
+    Dopri5(Dopri5),
+    Rk4 { steps_per_period: u32 },
+    TwoPhase(two_phase::TwoPhase),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Drive {
+    Prescribed(f64),
+    Input,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Transverse {
+    pub p: Params,
+    pub drive: Drive,
+    pub solver: Solver,
+    /// Coulomb force FC = mu m g, the scale of the outputs.
+    pub fc: f64,
+    start_time: f64,
+    t: f64,
+    y: [f64; MAX_DIM],
+    /// The drive velocity held over the current step (input source).
+    vd_held: f64,
+    mean: PeriodMean,
+    pub work: Work,
+}
+
+pub fn build(values: &ValueSet, start_time: f64) -> Result<Box<dyn Scene>, String> {
+    Ok(Box::new(Transverse::new(values, start_time)?))
+}
+
+/// A parameter that must be finite and >= 0.
+fn require_non_negative(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
+    let x = values.real(value_reference);
+    if x >= 0.0 && x.is_finite() {
+        Ok(x)
+    } else {
+        let name = values
+            .table
+            .variable(value_reference)
+            .map_or("?", |v| v.name);
+        Err(format!(
+            "{name} = {x} is out of range: expected {name} >= 0"
+        ))
+    }
+}
+
+fn require_finite(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
+    let x = values.real(value_reference);
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        let name = values
+            .table
+            .variable(value_reference)
+            .map_or("?", |v| v.name);
+        Err(format!("{name} = {x} is not a finite number"))
+    }
+}
+
+impl Transverse {
+    pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, String> {
+        if !start_time.is_finite() {
+            return Err(format!("start time {start_time} is not a finite number"));
+        }
+        let m = require_positive(values, vr::M)?;
+        let mu = require_positive(values, vr::MU)?;
+        let g = require_positive(values, vr::G)?;
+        let fs_ratio = require_positive(values, vr::FS_RATIO)?;
+        let vs = require_positive(values, vr::VS)?;
+        let kt = require_positive(values, vr::KT)?;
+        let zeta = require_non_negative(values, vr::ZETA)?;
+        let hv = require_non_negative(values, vr::HV)?;
+        let kd = require_non_negative(values, vr::KD)?;
+        let hd = require_non_negative(values, vr::HD)?;
+        let eta = values.real(vr::ETA);
+        if !(0.0..=1.0).contains(&eta) {
+            return Err(format!(
+                "eta = {eta} is out of range: expected 0 <= eta <= 1"
+            ));
+        }
+        let va = require_non_negative(values, vr::VA)?;
+        let f = require_positive(values, vr::F)?;
+        let vd = require_finite(values, vr::VD)?;
+        let vd_in = values.real(vr::VD_IN);
+        let fc = mu * m * g;
+        let law = LuGre2d {
+            kt,
+            fc,
+            fs: fs_ratio * fc,
+            vs,
+            h0: 2.0 * zeta * (m * kt).sqrt(),
+            hv,
+        };
+        let slip = match values.item(vr::SLIP_LAW) {
+            "total" => SlipLaw::Total,
+            _ => SlipLaw::Split,
+        };
+        let held = values.item(vr::BODY) == "held";
+        let p = Params {
+            law,
+            slip,
+            m,
+            kd,
+            hd,
+            eta,
+            va,
+            f,
+            held,
+        };
+        let drive = match values.item(vr::DRIVE_SOURCE) {
+            "input" => Drive::Input,
+            _ => Drive::Prescribed(vd),
+        };
+        let vd_start = match drive {
+            Drive::Prescribed(v) => v,
+            Drive::Input => vd_in,
+        };
+        if !vd_start.is_finite() {
+            return Err(format!("vd_in = {vd_in} is not a finite number"));
+        }
+        let steps = values.integer(vr::STEPS_PER_PERIOD);
+        if steps < 1 {
+            return Err(format!(
+                "steps_per_period = {steps} is out of range: expected steps_per_period >= 1"
+            ));
+        }
+        let steps = steps as u32;
+        let rtol = values.real(vr::TOLERANCE);
+        if !(1e-14..=1e-2).contains(&rtol) {
+            return Err(format!(
+                "tolerance = {rtol} is out of range: expected 1e-14 <= tolerance <= 0.01"
+            ));
+        }
+
+        // Initial state.
+        let mut y = [0.0; MAX_DIM];
+        if values.item(vr::INITIAL) == "sliding" && !held && vd_start != 0.0 {
+            y[VX] = vd_start;
+            y[LAMBDA] = if kd > 0.0 {
+                fc / kd * vd_start.signum()
+            } else {
+                0.0
+            };
+            y[ZX] = law.g(vd_start) * vd_start.signum();
+        }
+
+        let solver = match values.item(vr::SOLVER) {
+            "rk4" => Solver::Rk4 {
+                steps_per_period: steps,
+            },
+            "two_phase" => Solver::TwoPhase(two_phase::TwoPhase::new(&p, start_time, &y, steps)),
+            _ => {
+                // Absolute tolerances on the scale of each state: the deflection FC/kt, the
+                // velocities in play, a period's worth of the force integral.
+                let z0 = fc / kt;
+                let speed = vd_start.abs() + va + vs;
+                let mut atol = [0.0; MAX_DIM];
+                atol[X] = rtol * z0;
+                atol[VX] = rtol * speed;
+                atol[Y] = rtol * z0;
+                atol[VY] = rtol * speed;
+                atol[ZX] = rtol * z0;
+                atol[ZY] = rtol * z0;
+                atol[LAMBDA] = rtol * if kd > 0.0 { fc / kd } else { z0 };
+                atol[Q] = rtol * fc / f;
+                Solver::Dopri5(Dopri5::new(rtol, atol, 0.05 / f))
+            }
+        };
+
+        Ok(Transverse {
+            p,
+            drive,
+            solver,
+            fc,
+            start_time,
+            t: start_time,
+            y,
+            vd_held: vd_start,
+            mean: PeriodMean::new(start_time, 1.0 / f),
+            work: Work::default(),
+        })
+    }
+
+    fn vd(&self) -> f64 {
+        match self.drive {
+            Drive::Prescribed(v) => v,
+            Drive::Input => self.vd_held,
+        }
+    }
+
+    pub fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// FF, FFx, FFy, s, beta now.
+    pub fn forces(&self) -> (f64, f64, f64, f64, f64) {
+        match &self.solver {
+            Solver::TwoPhase(tp) => tp.forces(),
+            _ => {
+                let c = self.p.contact(self.t, &self.y);
+                (c.ff, c.ffx(), c.ffy(), c.s, c.beta())
+            }
+        }
+    }
+
+    pub fn mean_ffx(&self) -> f64 {
+        self.mean.value(self.t, self.forces().1)
+    }
+
+    pub fn position(&self) -> (f64, f64) {
+        (self.y[X], self.y[Y])
+    }
+
+    pub fn drive_force(&self) -> f64 {
+        self.p.drive_force(&self.y, self.vd())
+    }
+
+    /// Advances over one sub-step `[t0, t1]` that lies within one period.
+    fn substep(&mut self, t0: f64, t1: f64) -> Result<(), String> {
+        let vd = self.vd();
+        self.y[Q] = 0.0;
+        let eq = Equations { p: &self.p, vd };
+        match &mut self.solver {
+            Solver::Dopri5(d) => d.integrate_switched(&eq, t0, t1, &mut self.y, &mut self.work)?,
+            Solver::Rk4 { steps_per_period } => {
+                let mut rk = Rk4 {
+                    h_max: 1.0 / (self.p.f * f64::from(*steps_per_period)),
+                };
+                rk.integrate(&eq, t0, t1, &mut self.y, &mut self.work)?;
+            }
+            Solver::TwoPhase(tp) => {
+                tp.advance(&self.p, vd, t0, t1, &mut self.y, &mut self.work)?;
+            }
+        }
+        self.mean.add(self.y[Q], t1);
+        Ok(())
+    }
+}
+
+impl Scene for Transverse {
+    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String> {
+        if !(h > 0.0 && h.is_finite()) {
+            return Err(format!("communication step {h} s: expected a step > 0"));
+        }
+        if self.drive == Drive::Input {
+            let v = values.real(vr::VD_IN);
+            if !v.is_finite() {
+                return Err(format!("vd_in = {v} is not a finite number"));
+            }
+            self.vd_held = v;
+        }
+        let t_end = self.t + h;
+        let mut t = self.t;
+        while t < t_end {
+            let boundary = self.mean.next_boundary();
+            // A boundary within round-off of t_end is t_end (the master's clock drifts).
+            let next = if boundary < t_end - 1e-9 / self.p.f {
+                boundary
+            } else {
+                t_end
+            };
+            let next = if next > t { next } else { t_end };
+            self.substep(t, next)?;
+            t = next;
+        }
+        self.t = t_end;
+        let (ff, ..) = self.forces();
+        if self.y.iter().all(|v| v.is_finite()) && ff.is_finite() {
+            Ok(())
+        } else {
+            Err(format!(
+                "the state became non-finite at t = {t_end}; choose a smaller step or the dopri5 solver"
+            ))
+        }
+    }
+
+    fn write_outputs(&self, values: &mut ValueSet) {
+        let (ff, ffx, ffy, s, beta) = self.forces();
+        let mut vd = self.vd();
+        if self.drive == Drive::Input {
+            // Direct feedthrough of the hd term: Fd at t follows vd_in set at t.
+            let v = values.real(vr::VD_IN);
+            if v.is_finite() {
+                vd = v;
+            }
+        }
+        values.set(vr::FF, ff);
+        values.set(vr::FFX, ffx);
+        values.set(vr::FFY, ffy);
+        values.set(vr::FD, self.p.drive_force(&self.y, vd));
+        values.set(vr::FFX_MEAN, self.mean.value(self.t, ffx));
+        values.set(vr::X, self.y[X]);
+        values.set(vr::Y, self.y[Y]);
+        values.set(vr::S, s);
+        values.set(vr::BETA, beta);
+    }
+
+    fn time(&self) -> f64 {
+        self.t
+    }
+
+    fn save(&self) -> Vec<f64> {
+        let mut state = vec![self.t, self.vd_held];
+        state.extend_from_slice(&self.y);
+        state.extend(self.mean.save());
+        match &self.solver {
+            Solver::Dopri5(d) => state.push(d.h),
+            Solver::Rk4 { .. } => state.push(0.0),
+            Solver::TwoPhase(tp) => state.extend(tp.save()),
+        }
+        state
+    }
+
+    fn restore(&mut self, state: &[f64]) -> Result<(), String> {
+        let base = 2 + MAX_DIM + 3;
+        let extra = match &self.solver {
+            Solver::TwoPhase(_) => two_phase::SAVED,
+            _ => 1,
+        };
+        if state.len() != base + extra || state.iter().any(|x| !x.is_finite()) {
+            return Err(format!(
+                "a TransverseFriction state with this solver has {} finite numbers, got {}",
+                base + extra,
+                state.len()
+            ));
+        }
+        self.t = state[0];
+        self.vd_held = state[1];
+        self.y.copy_from_slice(&state[2..2 + MAX_DIM]);
+        self.mean.restore(&state[2 + MAX_DIM..base]);
+        match &mut self.solver {
+            Solver::Dopri5(d) => d.h = state[base],
+            Solver::Rk4 { .. } => {}
+            Solver::TwoPhase(tp) => tp.restore(&state[base..]),
+        }
+        Ok(())
+    }
+}
+
+impl Transverse {
+    /// The start time the scene was built at.
+    pub fn start_time(&self) -> f64 {
+        self.start_time
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,42 @@
+//! General integrators behind one small trait. Scene-specific schemes (the paper's two-phase
+//! step, the exact bristle update) live with their scene.
+//!
+//! Integrators keep their scratch space inline (systems have at most [`MAX_DIM`] states), so a
+//! doStep never allocates.
+
+pub mod dense;
+pub mod dopri;
+pub mod expm;
+pub mod radau;
+pub mod rk4;
+
+/// The largest state vector any scene integrates (including quadrature states such as the
+/// running integral of a force).
+pub const MAX_DIM: usize = 8;
+
+/// A system of ODEs `y' = f(t, y)`.
+pub trait Ode {
+    fn dim(&self) -> usize;
+    fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]);
+}
+
+/// What an integration cost, for the error-against-run-time report.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Work {
+    pub steps: u64,
+    pub rejected: u64,
+    pub rhs_evaluations: u64,
+}
+
+/// Advances `y` from `t0` to `t1`; an error says why the step could not be completed (the FMI
+/// layer turns it into fmi2Discard with the message logged).
+pub trait Integrator {
+    fn integrate(
+        &mut self,
+        ode: &dyn Ode,
+        t0: f64,
+        t1: f64,
+        y: &mut [f64],
+        work: &mut Work,
+    ) -> Result<(), String>;
+}

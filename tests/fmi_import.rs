@@ -1,0 +1,142 @@
+//! Loads the packed `LongitudinalFriction.fmu` with the `fmi` crate, an FMI 2.0 importer written
+//! independently of this crate. Our other tests drive the model through our own code; this one
+//! only sees the binary and the modelDescription.xml inside the .fmu, the way a simulation tool
+//! does. It unzips the archive, parses the XML, dlopens the library and calls the fmi2* C
+//! functions. It reproduces one row of Table 1 of Leus & Gutowski 2008 (JTAM 46(1)).
+
+use std::path::{Path, PathBuf};
+
+use fmi::fmi2::import::Fmi2Import;
+use fmi::fmi2::instance::{CoSimulation, Common};
+use fmi::traits::FmiImport;
+use friction_fmu::interface::longitudinal::TABLE;
+use friction_fmu::interface::variable::Kind;
+
+const MODEL: &str = "LongitudinalFriction";
+/// Vibration frequency (Hz); one vibration period is T = 1/F.
+const F: f64 = 60_000.0;
+const PERIODS: usize = 40;
+/// Communication steps per vibration period (step T/20).
+const STEPS_PER_PERIOD: usize = 20;
+
+/// The cdylib that `cargo test` builds next to the test binary's `deps` directory.
+fn cdylib() -> PathBuf {
+    let exe = std::env::current_exe().expect("path of the test binary");
+    let profile_dir = exe
+        .parent()
+        .and_then(Path::parent)
+        .expect("test binary lives in <target>/<profile>/deps");
+    let lib = profile_dir.join("libfriction_fmu.so");
+    assert!(
+        lib.is_file(),
+        "FMU library not found at {}; cargo test should have built it",
+        lib.display()
+    );
+    lib
+}
+
+/// Packs the FMU into a fresh directory of its own; returns the directory and the .fmu path.
+fn pack(tag: &str) -> (PathBuf, PathBuf) {
+    let dir = std::env::temp_dir().join(format!(
+        "friction-fmu-fmi-import-{}-{tag}",
+        std::process::id()
+    ));
+    // A directory left over from an earlier run with the same process id.
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("create temp dir");
+    let fmu = friction_fmu::package::pack(MODEL, &cdylib(), &dir).expect("pack the FMU");
+    (dir, fmu)
+}
+
+/// The integer that sets enumeration parameter `law` to `item`, from the variable table the
+/// TypeDefinitions are generated from (the fmi crate does not expose enumeration items).
+fn law_value(item: &str) -> i32 {
+    let law = TABLE.by_name("law").expect("variable `law`");
+    let Kind::Enumeration { type_name, .. } = law.kind else {
+        panic!("`law` is not an enumeration: {:?}", law.kind);
+    };
+    TABLE
+        .enum_type(type_name)
+        .and_then(|t| t.value_of(item))
+        .unwrap_or_else(|| panic!("no item `{item}` in enumeration {type_name}"))
+}
+
+/// Runs 40 periods of the paper's experiment for `law` at sliding velocity `vc`, the other
+/// parameters at the values of Table 1, and returns `(FT_mean, S)` at the end.
+fn simulate(law: &str, vc: f64) -> (f64, f64) {
+    let (dir, fmu_file) = pack(law);
+    let import: Fmi2Import = fmi::import::from_path(&fmu_file).expect("import the FMU");
+    let md = import.model_description();
+    let vr = |name: &str| {
+        md.model_variable_by_name(name)
+            .unwrap_or_else(|e| panic!("modelDescription: {e}"))
+            .value_reference
+    };
+
+    let mut fmu = import
+        .instantiate_cs("fmi_import", false, true)
+        .expect("fmi2Instantiate");
+    fmu.set_integer(&[vr("law")], &[law_value(law)])
+        .expect("fmi2SetInteger law");
+    let params = [
+        ("m", 0.02),
+        ("mu", 0.1),
+        ("g", 9.81),
+        ("kt", 5.6e4),
+        ("alpha", 1.0),
+        ("vc", vc),
+        ("va", 0.264),
+        ("f", F),
+    ];
+    let vrs: Vec<u32> = params.iter().map(|(name, _)| vr(name)).collect();
+    let values: Vec<f64> = params.iter().map(|&(_, value)| value).collect();
+    fmu.set_real(&vrs, &values).expect("fmi2SetReal parameters");
+
+    let n = PERIODS * STEPS_PER_PERIOD;
+    let t_end = PERIODS as f64 / F;
+    // Communication points t_k = t_end k / n: the last one is exactly t_end.
+    let t = |k: usize| t_end * k as f64 / n as f64;
+    fmu.setup_experiment(None, 0.0, Some(t_end))
+        .expect("fmi2SetupExperiment");
+    fmu.enter_initialization_mode()
+        .expect("fmi2EnterInitializationMode");
+    fmu.exit_initialization_mode()
+        .expect("fmi2ExitInitializationMode");
+    for k in 0..n {
+        fmu.do_step(t(k), t(k + 1) - t(k), true)
+            .unwrap_or_else(|e| panic!("fmi2DoStep at t = {:e}: {e}", t(k)));
+    }
+
+    let mut out = [0.0; 2];
+    fmu.get_real(&[vr("FT_mean"), vr("S")], &mut out)
+        .expect("fmi2GetReal");
+    fmu.terminate().expect("fmi2Terminate");
+    let _ = std::fs::remove_dir_all(dir);
+    (out[0], out[1])
+}
+
+/// Table 1, Dahl column, vc = 0.146 m/s: FT_mean = 0.0109 N, S = 44.4 %.
+#[test]
+fn dahl_reproduces_table_1_row() {
+    let (ft_mean, s) = simulate("dahl", 0.146);
+    let rel = (ft_mean - 0.0109).abs() / 0.0109;
+    assert!(
+        rel < 0.01,
+        "FT_mean = {ft_mean} N, paper 0.0109 N (rel. error {rel:.2e})"
+    );
+    assert!((s - 44.4).abs() < 1.0, "S = {s} %, paper 44.4 %");
+}
+
+/// Coulomb friction has a closed form: FT_mean = FC (2/pi) asin(vc/va) for |vc| < va.
+#[test]
+fn coulomb_matches_closed_form() {
+    let (vc, va): (f64, f64) = (0.146, 0.264);
+    let fc = 0.1 * 0.02 * 9.81;
+    let exact = fc * (2.0 / std::f64::consts::PI) * (vc / va).asin();
+    let (ft_mean, _) = simulate("coulomb", vc);
+    let rel = (ft_mean - exact).abs() / exact;
+    assert!(
+        rel < 1e-6,
+        "FT_mean = {ft_mean} N, closed form {exact} N (rel. error {rel:.2e})"
+    );
+}

@@ -1,0 +1,116 @@
+"""Shared fixtures: where the built FMUs are, and a small simulate helper.
+
+The FMUs are packed by `friction-fmu build` into fmu-out/ before pytest runs (tests/run.sh does
+both); a missing FMU is an error, never a skip.
+"""
+import pathlib
+
+import fmpy
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+FMU_DIR = ROOT / "fmu-out"
+
+
+def fmu_path(model_identifier):
+    path = FMU_DIR / f"{model_identifier}.fmu"
+    assert path.exists(), f"{path} is missing: run `friction-fmu build` first"
+    return str(path)
+
+
+def enum_value(model_identifier, variable, item):
+    """The integer of an enumeration item, read from the FMU's own modelDescription."""
+    md = fmpy.read_model_description(fmu_path(model_identifier))
+    var = next(v for v in md.modelVariables if v.name == variable)
+    items = var.declaredType.items
+    return next(int(i.value) for i in items if i.name == item)
+
+
+def simulate(model_identifier, start_values=None, stop_time=None, step=None, outputs=None, **kw):
+    """fmpy.simulate_fmu with our FMU, returning the structured result array."""
+    return fmpy.simulate_fmu(
+        fmu_path(model_identifier),
+        start_values=start_values or {},
+        stop_time=stop_time,
+        output_interval=step,
+        output=outputs,
+        **kw,
+    )
+
+
+@pytest.fixture(scope="session")
+def root():
+    return ROOT
+
+
+_UNZIPPED = {}
+
+
+def unzipped(model_identifier):
+    """Extracts an FMU once per session and returns (directory, model description)."""
+    if model_identifier not in _UNZIPPED:
+        path = fmu_path(model_identifier)
+        _UNZIPPED[model_identifier] = (fmpy.extract(path), fmpy.read_model_description(path))
+    return _UNZIPPED[model_identifier]
+
+
+class Slave:
+    """An FMU2Slave with its log captured, and value references looked up by name."""
+
+    def __init__(self, model_identifier, instance_name="instance", guid=None, logging_on=False):
+        from ctypes import byref
+        from fmpy.fmi2 import (
+            FMU2Slave,
+            fmi2CallbackFunctions,
+            fmi2CallbackLoggerTYPE,
+            fmi2CallbackAllocateMemoryTYPE,
+            fmi2CallbackFreeMemoryTYPE,
+        )
+        from fmpy import calloc, free
+        from fmpy.logging import addLoggerProxy
+
+        directory, md = unzipped(model_identifier)
+        self.md = md
+        self.vr = {v.name: v.valueReference for v in md.modelVariables}
+        self.messages = []
+
+        def log(env, name, status, category, message):
+            self.messages.append((status, category.decode(), message.decode()))
+
+        self._callbacks = fmi2CallbackFunctions()
+        self._callbacks.logger = fmi2CallbackLoggerTYPE(log)
+        self._callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+        self._callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        addLoggerProxy(byref(self._callbacks))
+        self.fmu = FMU2Slave(
+            guid=guid or md.guid,
+            unzipDirectory=directory,
+            modelIdentifier=md.coSimulation.modelIdentifier,
+            instanceName=instance_name,
+        )
+        self.fmu.instantiate(callbacks=self._callbacks, loggingOn=logging_on)
+
+    def set(self, **values):
+        for name, value in values.items():
+            var = next(v for v in self.md.modelVariables if v.name == name)
+            if var.type == "Real":
+                self.fmu.setReal([self.vr[name]], [value])
+            else:
+                if isinstance(value, str):
+                    value = enum_value(self.md.coSimulation.modelIdentifier, name, value)
+                self.fmu.setInteger([self.vr[name]], [value])
+
+    def get(self, *names):
+        return self.fmu.getReal([self.vr[n] for n in names])
+
+    def initialize(self, start_time=0.0, stop_time=None, **values):
+        self.fmu.setupExperiment(startTime=start_time, stopTime=stop_time)
+        self.set(**values)
+        self.fmu.enterInitializationMode()
+        self.fmu.exitInitializationMode()
+
+    def last_message(self):
+        return self.messages[-1][2] if self.messages else ""
+
+    def free(self):
+        self.fmu.freeInstance()
