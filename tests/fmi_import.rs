@@ -4,7 +4,7 @@
 //! does. It unzips the archive, parses the XML, dlopens the library and calls the fmi2* C
 //! functions. It reproduces one row of Table 1 of Leus & Gutowski 2008 (JTAM 46(1)).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use fmi::fmi2::import::Fmi2Import;
 use fmi::fmi2::instance::{CoSimulation, Common};
@@ -19,14 +19,20 @@ const PERIODS: usize = 40;
 /// Communication steps per vibration period (step T/20).
 const STEPS_PER_PERIOD: usize = 20;
 
-/// The cdylib that `cargo test` builds next to the test binary's `deps` directory.
+/// The cdylib built by the same `cargo test` run as this binary. Cargo leaves it in
+/// `<target>/<profile>/deps`, next to the test binary, and does not copy it up to
+/// `<target>/<profile>` (a copy there is only from an earlier `cargo build` and may be stale).
 fn cdylib() -> PathBuf {
     let exe = std::env::current_exe().expect("path of the test binary");
-    let profile_dir = exe
+    let deps = exe
         .parent()
-        .and_then(Path::parent)
         .expect("test binary lives in <target>/<profile>/deps");
-    let lib = profile_dir.join("libfriction_fmu.so");
+    let name = format!(
+        "{}friction_fmu{}",
+        std::env::consts::DLL_PREFIX,
+        std::env::consts::DLL_SUFFIX
+    );
+    let lib = deps.join(name);
     assert!(
         lib.is_file(),
         "FMU library not found at {}; cargo test should have built it",

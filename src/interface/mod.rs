@@ -13,3 +13,54 @@ pub mod variable;
 /// Every model this crate exports, in the order the CLI builds them.
 pub const MODELS: &[&variable::ModelTable] =
     &[&longitudinal::TABLE, &transverse::TABLE, &oscillator::TABLE];
+
+#[cfg(test)]
+mod tests {
+    use super::values::{check_value, ValueSet};
+    use super::variable::{Causality, Kind};
+    use super::MODELS;
+
+    /// Every table is self-consistent: unique names and value references, start values inside
+    /// their ranges, enumeration defaults that name an item, output dependencies on inputs.
+    #[test]
+    fn every_table_is_consistent() {
+        for table in MODELS {
+            let vars = table.variables;
+            for (i, a) in vars.iter().enumerate() {
+                for b in &vars[i + 1..] {
+                    assert_ne!(a.name, b.name, "{}: duplicate name", table.model_identifier);
+                    assert_ne!(
+                        a.value_reference, b.value_reference,
+                        "{}: {} and {} share a value reference",
+                        table.model_identifier, a.name, b.name
+                    );
+                }
+                let start = ValueSet::start(table).real(a.value_reference);
+                if a.causality != Causality::Output {
+                    assert_eq!(
+                        check_value(table, a, start),
+                        Ok(()),
+                        "{}: start of {}",
+                        table.model_identifier,
+                        a.name
+                    );
+                }
+                if let Kind::Enumeration { type_name, .. } = a.kind {
+                    assert!(
+                        table.enum_type(type_name).is_some(),
+                        "{}: no type {type_name}",
+                        a.name
+                    );
+                }
+                for &input in a.depends_on {
+                    assert_eq!(
+                        table.variable(input).map(|v| v.causality),
+                        Some(Causality::Input),
+                        "{}: depends on a non-input",
+                        a.name
+                    );
+                }
+            }
+        }
+    }
+}

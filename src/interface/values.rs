@@ -87,7 +87,7 @@ pub fn check_value(table: &ModelTable, var: &Variable, value: f64) -> Result<(),
     match var.kind {
         Kind::Real { min, max, unit, .. } => {
             if !value.is_finite() {
-                return Err(format!("{} = {value} is not a finite number", var.name));
+                return Err(format!("{} = {value}: expected a finite number", var.name));
             }
             if value < min || value > max {
                 return Err(format!(
