@@ -194,11 +194,11 @@ enum KindXml {
         #[serde(rename = "@unit", skip_serializing_if = "Option::is_none")]
         unit: Option<&'static str>,
         #[serde(rename = "@start", skip_serializing_if = "Option::is_none")]
-        start: Option<f64>,
+        start: Option<String>,
         #[serde(rename = "@min", skip_serializing_if = "Option::is_none")]
-        min: Option<f64>,
+        min: Option<String>,
         #[serde(rename = "@max", skip_serializing_if = "Option::is_none")]
-        max: Option<f64>,
+        max: Option<String>,
     },
     Integer {
         #[serde(rename = "@start")]
@@ -255,8 +255,20 @@ fn variability(v: Variability) -> &'static str {
     }
 }
 
-fn finite(x: f64) -> Option<f64> {
-    x.is_finite().then_some(x)
+/// The shortest text that reads back as the same f64, in exponent form when that is shorter
+/// (serde would spell 2.2e-308 out with three hundred zeros).
+fn number(x: f64) -> String {
+    let plain = format!("{x}");
+    let exponent = format!("{x:e}");
+    if exponent.len() < plain.len() {
+        exponent
+    } else {
+        plain
+    }
+}
+
+fn finite(x: f64) -> Option<String> {
+    x.is_finite().then(|| number(x))
 }
 
 fn scalar_variable(v: &Variable) -> ScalarVariable {
@@ -269,7 +281,7 @@ fn scalar_variable(v: &Variable) -> ScalarVariable {
         } => KindXml::Real {
             unit: (!unit.is_empty()).then_some(unit),
             // Calculated outputs may not carry a start value.
-            start: (v.causality != Causality::Output).then_some(start),
+            start: (v.causality != Causality::Output).then(|| number(start)),
             min: finite(min),
             max: finite(max),
         },

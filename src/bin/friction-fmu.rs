@@ -34,6 +34,11 @@ fn run(out: &Path) -> Result<(), String> {
     std::fs::create_dir_all(&figures).map_err(|e| format!("{}: {e}", figures.display()))?;
     println!();
     report::longitudinal::print_tables(&mut std::io::stdout()).map_err(|e| e.to_string())?;
+    println!();
+    report::transverse::print_summary(&figures).map_err(|e| e.to_string())?;
+    println!();
+    report::oscillator::print_summary(&figures).map_err(|e| e.to_string())?;
+    println!("\nfigures in {}", figures.display());
     Ok(())
 }
 

@@ -1,7 +1,9 @@
 //! `LongitudinalFriction`: a body sliding on a base that vibrates along the sliding direction
 //! (Leus & Gutowski 2008, JTAM 46(1)); Coulomb, Dahl or LuGre friction.
 
-use super::table::{enum_parameter, integer_parameter, real_input, real_output, real_parameter};
+use super::table::{
+    enum_parameter, integer_parameter, real_input, real_output, real_parameter, POSITIVE,
+};
 use super::variable::{DefaultExperiment, EnumType, ModelTable, Variable};
 
 /// Value references, named so the scene code reads like the paper.
@@ -87,7 +89,7 @@ const VARIABLES: &[Variable] = &[
         "Mass of the sliding body (> 0)",
         0.02,
         "kg",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_parameter(
@@ -96,7 +98,7 @@ const VARIABLES: &[Variable] = &[
         "Kinetic friction coefficient (> 0)",
         0.1,
         "",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_parameter(
@@ -105,7 +107,7 @@ const VARIABLES: &[Variable] = &[
         "Gravitational acceleration (> 0)",
         9.81,
         "m/s2",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_parameter(
@@ -114,7 +116,7 @@ const VARIABLES: &[Variable] = &[
         "Tangential contact stiffness (> 0)",
         5.6e4,
         "N/m",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_parameter(
@@ -123,7 +125,7 @@ const VARIABLES: &[Variable] = &[
         "Dahl shape exponent (> 0)",
         1.0,
         "",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_parameter(
@@ -150,7 +152,7 @@ const VARIABLES: &[Variable] = &[
         "Vibration frequency; also the averaging period 1/f of FT_mean (> 0)",
         60_000.0,
         "Hz",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_parameter(
@@ -159,7 +161,7 @@ const VARIABLES: &[Variable] = &[
         "LuGre static (breakaway) force (> 0)",
         0.021_582,
         "N",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_parameter(
@@ -168,7 +170,7 @@ const VARIABLES: &[Variable] = &[
         "LuGre Stribeck velocity (> 0)",
         0.01,
         "m/s",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_parameter(

@@ -1,7 +1,9 @@
 //! `DryFrictionOscillator`: `m u'' + c u' + H(u') + k u = F(t)` with regularised dry friction
 //! (seed 001, eq. 1-9) or the exact non-smooth switch model, `F = P sin(w t)` or an input.
 
-use super::table::{enum_parameter, integer_parameter, real_input, real_output, real_parameter};
+use super::table::{
+    enum_parameter, integer_parameter, real_input, real_output, real_parameter, POSITIVE,
+};
 use super::variable::{DefaultExperiment, EnumType, ModelTable, Variable};
 
 /// Value references.
@@ -112,7 +114,7 @@ const VARIABLES: &[Variable] = &[
         1e-300,
         INF,
     ),
-    real_parameter("m", vr::M, "Mass (> 0)", 1.0, "kg", 0.0, INF),
+    real_parameter("m", vr::M, "Mass (> 0)", 1.0, "kg", POSITIVE, INF),
     real_parameter("c", vr::C, "Viscous damping coefficient", 0.1, "N.s/m", 0.0, INF),
     real_parameter("k", vr::K, "Stiffness", 1.0, "N/m", 0.0, INF),
     real_parameter(
@@ -130,7 +132,7 @@ const VARIABLES: &[Variable] = &[
         "Excitation frequency; also sets the period 2 pi/w of u_amplitude (> 0)",
         1.0,
         "rad/s",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_parameter("h", vr::H, "Dry-friction force", 1.6, "N", 0.0, INF),
@@ -140,7 +142,7 @@ const VARIABLES: &[Variable] = &[
         "Width of the transition region around u' = 0 (> 0)",
         0.8,
         "m/s",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_parameter(

@@ -2,6 +2,10 @@
 
 use super::variable::{Causality, Kind, Variability, Variable};
 
+/// The `min` of a parameter that must be strictly positive: the smallest normal f64, so the
+/// inclusive range check of every setter refuses 0 with "expected name > 0".
+pub const POSITIVE: f64 = f64::MIN_POSITIVE;
+
 /// A fixed Real parameter with an inclusive range; `f64::INFINITY` bounds are left open.
 pub const fn real_parameter(
     name: &'static str,

@@ -1,7 +1,9 @@
 //! `TransverseFriction`: a body pulled over a support that vibrates across the sliding direction,
 //! with a 2D LuGre contact (seed 000, eq. 1-30).
 
-use super::table::{enum_parameter, integer_parameter, real_input, real_output, real_parameter};
+use super::table::{
+    enum_parameter, integer_parameter, real_input, real_output, real_parameter, POSITIVE,
+};
 use super::variable::{DefaultExperiment, EnumType, ModelTable, Variable};
 
 /// Value references, named so the scene code reads like the paper.
@@ -95,7 +97,7 @@ pub const INITIAL: EnumType = EnumType {
         ("rest", "Body at rest, drive and contact unloaded"),
         (
             "sliding",
-            "Steady 1D sliding at vd: body velocity vd, drive stretched to pull FC, contact deflected by g(vd) along x; only the vibration's transient remains (body free only)",
+            "Steady 1D sliding at the drive velocity (vd, or vd_in at the start): body at that velocity, drive stretched to pull FC, contact deflected by g(vd) along x; only the vibration's transient remains (body free only)",
         ),
     ],
 };
@@ -141,7 +143,7 @@ const VARIABLES: &[Variable] = &[
         "Mass of the sliding body (> 0)",
         0.56,
         "kg",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_parameter(
@@ -150,7 +152,7 @@ const VARIABLES: &[Variable] = &[
         "Friction coefficient, FC = mu m g (> 0)",
         0.178,
         "",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_parameter(
@@ -159,7 +161,7 @@ const VARIABLES: &[Variable] = &[
         "Gravitational acceleration (> 0)",
         9.81,
         "m/s2",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_parameter(
@@ -168,7 +170,7 @@ const VARIABLES: &[Variable] = &[
         "Static to Coulomb force FS/FC (> 0)",
         1.1,
         "",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_parameter(
@@ -177,7 +179,7 @@ const VARIABLES: &[Variable] = &[
         "Stribeck velocity, also the damping cut-off ve (> 0)",
         1e-6,
         "m/s",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_parameter(
@@ -186,7 +188,7 @@ const VARIABLES: &[Variable] = &[
         "Tangential contact stiffness (> 0)",
         6.286e7,
         "N/m",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_parameter(
@@ -242,7 +244,7 @@ const VARIABLES: &[Variable] = &[
         "Vibration frequency; also the averaging period 1/f of FFx_mean (> 0)",
         3000.0,
         "Hz",
-        0.0,
+        POSITIVE,
         INF,
     ),
     real_input(

@@ -126,6 +126,13 @@ pub fn check_value(table: &ModelTable, var: &Variable, value: f64) -> Result<(),
 }
 
 fn range_text(name: &str, min: f64, max: f64) -> String {
+    if min == f64::MIN_POSITIVE {
+        return if max.is_finite() {
+            format!("0 < {name} <= {max}")
+        } else {
+            format!("{name} > 0")
+        };
+    }
     match (min.is_finite(), max.is_finite()) {
         (true, true) => format!("{min} <= {name} <= {max}"),
         (true, false) => format!("{name} >= {min}"),

@@ -55,6 +55,11 @@ impl Longitudinal {
         let g = require_positive(values, vr::G)?;
         let f = require_positive(values, vr::F)?;
         let fc = mu * m * g;
+        if !(fc.is_normal() && fc > 0.0) {
+            return Err(format!(
+                "the Coulomb force FC = mu m g = {fc} N: expected a finite FC > 0 (check m, mu, g)"
+            ));
+        }
         let kt = require_positive(values, vr::KT)?;
         let law = match values.item(vr::LAW) {
             "coulomb" => Law::Coulomb,

@@ -2,6 +2,7 @@
 //! parameters and inputs from a [`ValueSet`] and knows nothing of FMI.
 
 pub mod longitudinal;
+pub mod oscillator;
 pub mod period_mean;
 pub mod transverse;
 
@@ -45,6 +46,10 @@ pub const MODELS: &[Model] = &[
     Model {
         table: &crate::interface::transverse::TABLE,
         build: transverse::build,
+    },
+    Model {
+        table: &crate::interface::oscillator::TABLE,
+        build: oscillator::build,
     },
 ];
 

@@ -1,6 +1,9 @@
 //! Dense LU with partial pivoting on fixed-size arrays, for the small systems of the implicit
 //! integrators and the matrix exponential (no allocation: the caller owns the storage).
 
+// Index loops mirror the textbook formulas of elimination and substitution.
+#![allow(clippy::needless_range_loop)]
+
 /// Factorises the leading `n x n` block of `a` in place (L below the diagonal with unit
 /// diagonal, U on and above it) and records the row swaps in `pivots`. False if singular.
 pub fn lu_factor<const N: usize>(a: &mut [[f64; N]; N], n: usize, pivots: &mut [usize; N]) -> bool {
@@ -32,8 +35,12 @@ pub fn lu_factor<const N: usize>(a: &mut [[f64; N]; N], n: usize, pivots: &mut [
 
 /// Solves `A x = b` in place with a factorisation from [`lu_factor`].
 pub fn lu_solve<const N: usize>(lu: &[[f64; N]; N], n: usize, pivots: &[usize; N], b: &mut [f64]) {
+    // Whole rows (L included) were swapped during factorisation: permute b first, then
+    // substitute forward.
     for k in 0..n {
         b.swap(k, pivots[k]);
+    }
+    for k in 0..n {
         for i in k + 1..n {
             b[i] -= lu[i][k] * b[k];
         }

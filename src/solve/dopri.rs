@@ -242,7 +242,9 @@ impl Dopri5 {
         if n > MAX_DIM || y.len() < n {
             return Err(format!("dopri5: {n} states do not fit (at most {MAX_DIM})"));
         }
-        if !(t1 >= t0) || !(self.rtol > 0.0) || !(self.h_max > 0.0) {
+        // Written so that NaN fails too.
+        let valid = t1 >= t0 && self.rtol > 0.0 && self.h_max > 0.0;
+        if !valid {
             return Err(format!(
                 "dopri5: needs t1 >= t0, rtol > 0, h_max > 0; got [{t0}, {t1}], rtol {}, h_max {}",
                 self.rtol, self.h_max

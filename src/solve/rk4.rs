@@ -22,7 +22,9 @@ impl Integrator for Rk4 {
         if n > MAX_DIM || y.len() < n {
             return Err(format!("rk4: {n} states do not fit (at most {MAX_DIM})"));
         }
-        if !(self.h_max > 0.0) || !(t1 >= t0) {
+        // Written so that NaN fails too.
+        let valid = self.h_max > 0.0 && t1 >= t0;
+        if !valid {
             return Err(format!(
                 "rk4: needs h_max > 0 and t1 >= t0, got h_max = {}, [{t0}, {t1}]",
                 self.h_max
@@ -65,7 +67,7 @@ impl Integrator for Rk4 {
             Ok(())
         } else {
             Err(format!(
-                "rk4: the state became non-finite by t = {t1}; the step {h} s is too long for this stiffness"
+                "rk4: the state became non-finite by t = {t1}; the step {h:e} s is too long for this stiffness"
             ))
         }
     }

@@ -54,15 +54,40 @@ def unzipped(model_identifier):
     return _UNZIPPED[model_identifier]
 
 
+# fmpy's native logger proxy keeps ONE logger in a global, replaced by every addLoggerProxy call,
+# and shared with the callbacks fmpy.simulate_fmu uses. So there is one logger for the whole
+# session, never freed, which routes messages to the instance they belong to by its environment
+# pointer (and prints those of instances not created here, as fmpy's own logger does).
+_LOGS = {}
+
+
+def _log(environment, instance_name, status, category, message):
+    text = message.decode("utf-8", errors="replace")
+    messages = _LOGS.get(environment or 0)
+    if messages is None:
+        label = ["OK", "WARNING", "DISCARD", "ERROR", "FATAL", "PENDING"][status]
+        print(f"[{label}] {text}")
+    else:
+        messages.append((status, category.decode("utf-8", errors="replace"), text))
+
+
+def _make_logger():
+    from fmpy.fmi2 import fmi2CallbackLoggerTYPE
+
+    return fmi2CallbackLoggerTYPE(_log)
+
+
+_LOGGER = _make_logger()
+
+
 class Slave:
     """An FMU2Slave with its log captured, and value references looked up by name."""
 
     def __init__(self, model_identifier, instance_name="instance", guid=None, logging_on=False):
-        from ctypes import byref
+        from ctypes import byref, c_void_p
         from fmpy.fmi2 import (
             FMU2Slave,
             fmi2CallbackFunctions,
-            fmi2CallbackLoggerTYPE,
             fmi2CallbackAllocateMemoryTYPE,
             fmi2CallbackFreeMemoryTYPE,
         )
@@ -73,14 +98,14 @@ class Slave:
         self.md = md
         self.vr = {v.name: v.valueReference for v in md.modelVariables}
         self.messages = []
-
-        def log(env, name, status, category, message):
-            self.messages.append((status, category.decode(), message.decode()))
+        self._environment = len(_LOGS) + 1
+        _LOGS[self._environment] = self.messages
 
         self._callbacks = fmi2CallbackFunctions()
-        self._callbacks.logger = fmi2CallbackLoggerTYPE(log)
+        self._callbacks.logger = _LOGGER
         self._callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
         self._callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        self._callbacks.componentEnvironment = c_void_p(self._environment)
         addLoggerProxy(byref(self._callbacks))
         self.fmu = FMU2Slave(
             guid=guid or md.guid,

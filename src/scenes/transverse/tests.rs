@@ -1,1 +1,130 @@
 use super::*;
+use crate::friction::lugre::LuGre;
+use crate::interface::transverse::{BODY, INITIAL, SLIP_LAW, SOLVER, TABLE};
+
+fn values(solver: &str, slip: &str) -> ValueSet {
+    let mut v = ValueSet::start(&TABLE);
+    v.set(vr::SOLVER, f64::from(SOLVER.value_of(solver).unwrap()));
+    v.set(vr::SLIP_LAW, f64::from(SLIP_LAW.value_of(slip).unwrap()));
+    v
+}
+
+fn mean_after(v: &ValueSet, periods: u32) -> f64 {
+    let mut scene = Transverse::new(v, 0.0).unwrap();
+    let period = 1.0 / v.real(vr::F);
+    for _ in 0..periods {
+        scene.do_step(period, v).unwrap();
+    }
+    scene.mean_ffx()
+}
+
+/// Bad parameters are refused with a message naming the variable and the expected range.
+#[test]
+fn bad_parameters_are_refused_with_a_message() {
+    for (vref, value, expect) in [
+        (vr::KT, -1.0, "kt = -1 is out of range: expected kt > 0"),
+        (vr::KT, 0.0, "expected kt > 0"),
+        (vr::ETA, 1.5, "expected 0 <= eta <= 1"),
+        (vr::ETA, -0.1, "expected 0 <= eta <= 1"),
+        (vr::F, 0.0, "expected f > 0"),
+        (vr::M, f64::NAN, "m = NaN"),
+        (vr::VD, f64::NAN, "vd = NaN is not a finite number"),
+        (vr::TOLERANCE, 0.5, "expected 1e-14 <= tolerance"),
+    ] {
+        let mut v = values("dopri5", "split");
+        v.set(vr::ETA, 0.71);
+        v.set(vref, value);
+        let err = Transverse::new(&v, 0.0).expect_err("refused");
+        assert!(err.contains(expect), "{err}");
+    }
+}
+
+/// Oracle: a body held still while the support vibrates is 1D LuGre at the support's velocity
+/// (Fig. 4b); with zeta = 0 that is scene L's LuGre law (sigma1 = 0), integrated here by its
+/// exact frozen-velocity update on a fine grid. The two agree to the integrators' accuracy.
+#[test]
+fn held_body_matches_scene_l_lugre() {
+    let mut v = values("dopri5", "split");
+    v.set(vr::ZETA, 0.0);
+    v.set(vr::BODY, f64::from(BODY.value_of("held").unwrap()));
+    v.set(vr::TOLERANCE, 1e-12);
+    let mut scene = Transverse::new(&v, 0.0).unwrap();
+    let p = scene.p;
+    let law = LuGre {
+        sigma0: p.law.kt,
+        sigma1: 0.0,
+        sigma2: 0.0,
+        fc: p.law.fc,
+        fs: p.law.fs,
+        vs: p.law.vs,
+    };
+    // 1D reference: many exact frozen-velocity sub-steps (second order in the sub-step).
+    let n = 200_000;
+    let period = 1.0 / p.f;
+    let h = 3.0 * period / f64::from(n);
+    let mut z = 0.0;
+    for i in 0..n {
+        let t = (f64::from(i) + 0.5) * h;
+        z = law.advance(z, -p.support_velocity(t).y, h).0;
+    }
+    for _ in 0..3 {
+        scene.do_step(period, &v).unwrap();
+    }
+    let (_, _, ffy, ..) = scene.forces();
+    assert!(
+        (ffy + law.force(z, 0.0)).abs() < 1e-6 * p.law.fc,
+        "{ffy} vs {}",
+        -law.force(z, 0.0)
+    );
+}
+
+/// Oracle: the dopri5 solution at a 100x tighter tolerance; the error follows the tolerance.
+#[test]
+fn dopri5_meets_its_tolerance_for_both_slip_laws() {
+    for slip in ["split", "total"] {
+        let mut v = values("dopri5", slip);
+        v.set(vr::INITIAL, f64::from(INITIAL.value_of("sliding").unwrap()));
+        v.set(vr::TOLERANCE, 1e-12);
+        let reference = mean_after(&v, 20);
+        v.set(vr::TOLERANCE, 1e-9);
+        let mean = mean_after(&v, 20);
+        assert!(
+            (mean / reference - 1.0).abs() < 1e-7,
+            "{slip}: {mean} vs {reference}"
+        );
+    }
+}
+
+/// Oracle: the split-law ODE (dopri5, tight); the paper's scheme converges to it with first
+/// order: tripling the steps cuts the error about threefold.
+#[test]
+fn two_phase_converges_to_split_law_with_first_order() {
+    let mut v = values("dopri5", "split");
+    v.set(vr::INITIAL, f64::from(INITIAL.value_of("sliding").unwrap()));
+    v.set(vr::TOLERANCE, 1e-12);
+    let reference = mean_after(&v, 10);
+    v.set(vr::SOLVER, f64::from(SOLVER.value_of("two_phase").unwrap()));
+    let err = |n: f64| {
+        let mut v = v.clone();
+        v.set(vr::STEPS_PER_PERIOD, n);
+        mean_after(&v, 10) - reference
+    };
+    let (e1, e2) = (err(1000.0), err(3000.0));
+    let ratio = e1 / e2;
+    assert!((2.6..3.4).contains(&ratio), "{e1} {e2} ratio {ratio}");
+}
+
+/// save/restore reproduces the run exactly.
+#[test]
+fn restore_continues_identically() {
+    let v = values("dopri5", "split");
+    let mut a = Transverse::new(&v, 0.0).unwrap();
+    a.do_step(1e-4, &v).unwrap();
+    let saved = a.save();
+    a.do_step(1e-4, &v).unwrap();
+    let mut b = Transverse::new(&v, 0.0).unwrap();
+    b.restore(&saved).unwrap();
+    b.do_step(1e-4, &v).unwrap();
+    assert_eq!(a.forces(), b.forces());
+    assert_eq!(a.mean_ffx(), b.mean_ffx());
+}

@@ -1,0 +1,496 @@
+//! Scene O: a forced oscillator with dry friction, `m u'' + c u' + H(u') + k u = F(t)` (seed 001,
+//! eq. 1), `F = P sin(w t)` or an input held over each communication step.
+//!
+//! Two cores share the parameters and the outputs:
+//! - the regularised laws (eq. 4-9) are a smooth-but-stiff ODE in `(u, u')` (slope h/D near
+//!   u' = 0), integrated by the L-stable Radau IIA method in sub-steps of at most one
+//!   `steps_per_period`-th of the forcing period;
+//! - the exact laws ([`exact`]) are the non-smooth switch model, solved in closed form phase by
+//!   phase with every stick/slip event located inside the communication step.
+//!
+//! `u_amplitude` is max |u| over the last complete forcing period `2 pi/w`, counted from the
+//! start time. The exact core meets every extreme of u as an event; the regularised core finds
+//! extremes inside a sub-step on the cubic Hermite interpolant of (u, u') at its ends.
+
+pub mod exact;
+
+use super::{require_positive, Scene};
+use crate::friction::regularized::{stiction_excess, Regularized};
+use crate::interface::oscillator::vr;
+use crate::interface::values::ValueSet;
+use crate::solve::radau::Radau5;
+use crate::solve::{Integrator, Ode, Work};
+use exact::{Event, Mode, State, Switch};
+use std::f64::consts::TAU;
+
+/// The regularised equations of motion, `y = (u, u')`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Equations {
+    pub m: f64,
+    pub c: f64,
+    pub k: f64,
+    pub w: f64,
+    /// Sine amplitude; unused when `input`.
+    pub p: f64,
+    pub input: bool,
+    /// The input force held over the current step.
+    pub held: f64,
+    pub law: Regularized,
+}
+
+impl Equations {
+    pub fn force(&self, t: f64) -> f64 {
+        if self.input {
+            self.held
+        } else {
+            self.p * (self.w * t).sin()
+        }
+    }
+
+    /// `(H, C, u'')` at (t, u, u').
+    pub fn evaluate(&self, t: f64, u: f64, v: f64) -> (f64, f64, f64) {
+        let (h, c) = self.law.eval(v);
+        (h, c, (self.force(t) - self.c * v - h - self.k * u) / self.m)
+    }
+}
+
+impl Ode for Equations {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        dydt[0] = y[1];
+        dydt[1] = self.evaluate(t, y[0], y[1]).2;
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+enum Core {
+    Exact(Box<Switch>),
+    Regularized(Equations, Radau5),
+}
+
+/// max |u| over the last complete period; periods counted from the start with an integer index,
+/// as [`super::period_mean::PeriodMean`] does.
+#[derive(Clone, Debug, PartialEq)]
+struct PeriodMax {
+    start_time: f64,
+    period: f64,
+    completed: u64,
+    running: f64,
+    last: f64,
+}
+
+impl PeriodMax {
+    fn next_boundary(&self) -> f64 {
+        self.start_time + (self.completed + 1) as f64 * self.period
+    }
+
+    /// Adds the largest |u| of a sub-interval ending at t_end (where |u| = `at_end`).
+    fn add(&mut self, largest: f64, t_end: f64, at_end: f64) {
+        self.running = self.running.max(largest);
+        if t_end >= self.next_boundary() - 1e-9 * self.period {
+            self.last = self.running;
+            self.running = at_end;
+            self.completed += 1;
+        }
+    }
+
+    fn value(&self) -> f64 {
+        if self.completed > 0 {
+            self.last
+        } else {
+            self.running
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Oscillator {
+    core: Core,
+    state: State,
+    /// The input force held over the current step.
+    held: f64,
+    /// Longest sub-step of the regularised core.
+    max_substep: f64,
+    amplitude: PeriodMax,
+    pub work: Work,
+}
+
+pub fn build(values: &ValueSet, start_time: f64) -> Result<Box<dyn Scene>, String> {
+    Ok(Box::new(Oscillator::new(values, start_time)?))
+}
+
+fn require_non_negative(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
+    let x = values.real(value_reference);
+    if x >= 0.0 && x.is_finite() {
+        Ok(x)
+    } else {
+        let name = values
+            .table
+            .variable(value_reference)
+            .map_or("?", |v| v.name);
+        Err(format!(
+            "{name} = {x} is out of range: expected {name} >= 0"
+        ))
+    }
+}
+
+fn require_finite(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
+    let x = values.real(value_reference);
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        let name = values
+            .table
+            .variable(value_reference)
+            .map_or("?", |v| v.name);
+        Err(format!(
+            "{name} = {x} is out of range: expected a finite number"
+        ))
+    }
+}
+
+impl Oscillator {
+    pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, String> {
+        let m = require_positive(values, vr::M)?;
+        let c = require_non_negative(values, vr::C)?;
+        let k = require_non_negative(values, vr::K)?;
+        let p = require_non_negative(values, vr::P)?;
+        let w = require_positive(values, vr::W)?;
+        let h = require_non_negative(values, vr::H)?;
+        let d = require_positive(values, vr::D)?;
+        let da = require_non_negative(values, vr::DA)?;
+        let u0 = require_finite(values, vr::U0)?;
+        let v0 = require_finite(values, vr::V0)?;
+        let rtol = require_positive(values, vr::RTOL)?;
+        let atol = require_positive(values, vr::ATOL)?;
+        let steps = values.integer(vr::STEPS_PER_PERIOD);
+        if steps < 1 {
+            return Err(format!(
+                "steps_per_period = {steps} is out of range: expected steps_per_period >= 1"
+            ));
+        }
+        let steps = f64::from(steps);
+        let ha = stiction_excess(h, d, da);
+        if !ha.is_finite() {
+            return Err(format!(
+                "ha = h*Da/D = {ha} is not finite: expected Da/D of moderate size (h = {h}, D = {d}, Da = {da})"
+            ));
+        }
+        let input = values.item(vr::FORCE_SOURCE) == "input";
+        let held = require_finite(values, vr::P_IN)?;
+        let period = TAU / w;
+        let law = values.item(vr::LAW);
+        let core = match law {
+            "exact" | "exact_stiction" => {
+                let hs = if law == "exact" { h } else { h + ha };
+                Core::Exact(Box::new(Switch::new(
+                    (m, c, k, w),
+                    p,
+                    input,
+                    (h, hs),
+                    steps,
+                )?))
+            }
+            _ => {
+                let law = match law {
+                    "linear" => Regularized::Linear { h, d },
+                    "linear_stiction" => Regularized::LinearStiction { h, d, da },
+                    "trigonometric_stiction" => Regularized::TrigonometricStiction { h, d, da },
+                    _ => Regularized::Trigonometric { h, d },
+                };
+                let equations = Equations {
+                    m,
+                    c,
+                    k,
+                    w,
+                    p,
+                    input,
+                    held,
+                    law,
+                };
+                Core::Regularized(equations, Radau5::new(rtol, atol, period / steps))
+            }
+        };
+        let mode = match &core {
+            Core::Exact(switch) => switch.initial_mode(start_time, u0, v0, held),
+            Core::Regularized(..) => Mode::Sliding(1.0),
+        };
+        Ok(Oscillator {
+            core,
+            state: State {
+                t: start_time,
+                u: u0,
+                v: v0,
+                mode,
+            },
+            held,
+            max_substep: period / steps,
+            amplitude: PeriodMax {
+                start_time,
+                period,
+                completed: 0,
+                running: u0.abs(),
+                last: u0.abs(),
+            },
+            work: Work::default(),
+        })
+    }
+
+    pub fn state(&self) -> State {
+        self.state
+    }
+
+    /// `(H, C, u'')` now, with the input force `held`.
+    pub fn friction(&self, held: f64) -> (f64, f64, f64) {
+        match &self.core {
+            Core::Exact(switch) => {
+                let (h, a) = switch.friction_and_acceleration(&self.state, held);
+                (h, 0.0, a)
+            }
+            Core::Regularized(equations, _) => {
+                let equations = Equations { held, ..*equations };
+                equations.evaluate(self.state.t, self.state.u, self.state.v)
+            }
+        }
+    }
+
+    pub fn amplitude(&self) -> f64 {
+        self.amplitude.value()
+    }
+
+    /// Advances to t_end (not past the next period boundary); returns the largest |u| met.
+    fn advance(&mut self, t_end: f64, log: Option<&mut Vec<Event>>) -> Result<f64, String> {
+        let held = self.held;
+        match &mut self.core {
+            Core::Exact(switch) => switch.advance(&mut self.state, t_end, held, log),
+            Core::Regularized(equations, solver) => {
+                equations.held = held;
+                let mut largest = self.state.u.abs();
+                while self.state.t < t_end {
+                    let t0 = self.state.t;
+                    let t1 = if t_end - t0 <= self.max_substep * (1.0 + 1e-9) {
+                        t_end
+                    } else {
+                        t0 + self.max_substep
+                    };
+                    let start = [self.state.u, self.state.v];
+                    let probe = solver.clone();
+                    let mut y = start;
+                    solver.integrate(&*equations, t0, t1, &mut y, &mut self.work)?;
+                    if start[1] * y[1] < 0.0 {
+                        let extreme =
+                            turning_point(equations, probe, (t0, start), (t1, y), &mut self.work)?;
+                        largest = largest.max(extreme.abs());
+                    }
+                    self.state.t = t1;
+                    self.state.u = y[0];
+                    self.state.v = y[1];
+                    largest = largest.max(y[0].abs());
+                }
+                Ok(largest)
+            }
+        }
+    }
+
+    /// Like [`Scene::do_step`], recording every stick/slip event of the exact core in `log`.
+    pub fn step_logged(
+        &mut self,
+        h: f64,
+        held: f64,
+        mut log: Option<&mut Vec<Event>>,
+    ) -> Result<(), String> {
+        if !(h > 0.0 && h.is_finite()) {
+            return Err(format!("communication step {h}: expected a step > 0"));
+        }
+        self.held = held;
+        let t_end = self.state.t + h;
+        while self.state.t < t_end {
+            let boundary = self.amplitude.next_boundary();
+            // A boundary within round-off of t_end closes its period at t_end (PeriodMax::add).
+            let segment_end = if boundary < t_end - 1e-9 * self.amplitude.period {
+                boundary
+            } else {
+                t_end
+            };
+            let largest = self.advance(segment_end, log.as_deref_mut())?;
+            self.state.t = segment_end;
+            self.amplitude.add(largest, segment_end, self.state.u.abs());
+        }
+        self.state.t = t_end;
+        let (friction, _, a) = self.friction(self.held);
+        if [
+            self.state.u,
+            self.state.v,
+            friction,
+            a,
+            self.amplitude.value(),
+        ]
+        .iter()
+        .all(|x| x.is_finite())
+        {
+            Ok(())
+        } else {
+            Err(format!(
+                "the motion became non-finite at t = {t_end} (u = {}, u' = {})",
+                self.state.u, self.state.v
+            ))
+        }
+    }
+}
+
+/// u where u' changes sign inside the sub-step from `a` to `b`: u' is located by re-integrating
+/// (Illinois false position, each probe starting from the latest point before the sign change).
+/// An interpolant would not do: u'' jumps by 2h/m right there when D is small. u is flat at its
+/// extreme, so an error dv in u' there moves u by only about dv^2/(2|u''|).
+fn turning_point(
+    equations: &Equations,
+    solver: Radau5,
+    (t0, y0): (f64, [f64; 2]),
+    (t1, y1): (f64, [f64; 2]),
+    work: &mut Work,
+) -> Result<f64, String> {
+    let atol = solver.atol;
+    let (mut lo, mut y_lo, mut solver_lo) = (t0, y0, solver);
+    let (mut hi, mut v_hi) = (t1, y1[1]);
+    let mut v_lo = y0[1];
+    let mut best = if y0[1].abs() < y1[1].abs() {
+        y0[0]
+    } else {
+        y1[0]
+    };
+    let mut side = 0;
+    for _ in 0..40 {
+        let t = (lo * v_hi - hi * v_lo) / (v_hi - v_lo);
+        if !(t > lo && t < hi) {
+            break;
+        }
+        let mut probe = solver_lo.clone();
+        let mut y = y_lo;
+        probe.integrate(equations, lo, t, &mut y, work)?;
+        best = y[0];
+        let slope = (v_hi - v_lo) / (hi - lo);
+        if y[1] * y[1] <= 0.2 * atol * slope.abs() || hi - lo <= 4.0 * f64::EPSILON * t.abs() {
+            break;
+        }
+        if (y[1] > 0.0) == (y_lo[1] > 0.0) {
+            (lo, y_lo, solver_lo) = (t, y, probe);
+            v_lo = y[1];
+            if side == -1 {
+                v_hi *= 0.5;
+            }
+            side = -1;
+        } else {
+            hi = t;
+            v_hi = y[1];
+            if side == 1 {
+                v_lo *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    Ok(best)
+}
+
+impl Scene for Oscillator {
+    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String> {
+        let held = values.real(vr::P_IN);
+        self.step_logged(h, held, None)
+    }
+
+    fn write_outputs(&self, values: &mut ValueSet) {
+        // Direct feedthrough: a and H at t follow the input force set at t.
+        let held = values.real(vr::P_IN);
+        let (friction, slope, a) = self.friction(held);
+        values.set(vr::U, self.state.u);
+        values.set(vr::V, self.state.v);
+        values.set(vr::A, a);
+        values.set(vr::H_OUT, friction);
+        values.set(vr::C_OUT, slope);
+        values.set(vr::U_AMPLITUDE, self.amplitude.value());
+    }
+
+    fn time(&self) -> f64 {
+        self.state.t
+    }
+
+    fn save(&self) -> Vec<f64> {
+        let step_hint = match &self.core {
+            Core::Regularized(_, solver) => solver.h_next,
+            Core::Exact(_) => 0.0,
+        };
+        vec![
+            self.state.t,
+            self.state.u,
+            self.state.v,
+            self.state.mode.code(),
+            self.held,
+            self.amplitude.completed as f64,
+            self.amplitude.running,
+            self.amplitude.last,
+            step_hint,
+        ]
+    }
+
+    fn restore(&mut self, state: &[f64]) -> Result<(), String> {
+        let mode = state.get(3).copied().and_then(Mode::from_code);
+        match mode {
+            Some(mode) if state.len() == 9 && state.iter().all(|x| x.is_finite()) => {
+                self.state = State {
+                    t: state[0],
+                    u: state[1],
+                    v: state[2],
+                    mode,
+                };
+                self.held = state[4];
+                self.amplitude.completed = state[5] as u64;
+                self.amplitude.running = state[6];
+                self.amplitude.last = state[7];
+                if let Core::Regularized(_, solver) = &mut self.core {
+                    solver.h_next = state[8];
+                }
+                Ok(())
+            }
+            _ => Err(format!(
+                "a DryFrictionOscillator state has 9 finite numbers with a mode of 0 or +-1, got {} numbers",
+                state.len()
+            )),
+        }
+    }
+}
+
+/// Runs a scene from rest for `periods` forcing periods in steps of 1/50 period and returns
+/// `u_amplitude` at the end: the steady amplitude once the free response has died out.
+pub fn steady_amplitude(values: &ValueSet, periods: u32) -> Result<f64, String> {
+    let mut scene = Oscillator::new(values, 0.0)?;
+    let step = scene.amplitude.period / 50.0;
+    for _ in 0..periods * 50 {
+        scene.do_step(step, values)?;
+    }
+    Ok(scene.amplitude())
+}
+
+/// `(t, u, u', H, C)` sampled `per_period` times a period over the last `shown` of `periods`.
+pub fn trajectory(
+    values: &ValueSet,
+    periods: u32,
+    shown: u32,
+    per_period: u32,
+) -> Result<Vec<[f64; 5]>, String> {
+    let mut scene = Oscillator::new(values, 0.0)?;
+    let step = scene.amplitude.period / f64::from(per_period);
+    let mut samples = Vec::new();
+    for i in 0..periods * per_period {
+        scene.do_step(step, values)?;
+        if i + 1 >= (periods - shown) * per_period {
+            let (friction, slope, _) = scene.friction(values.real(vr::P_IN));
+            let st = scene.state();
+            samples.push([st.t, st.u, st.v, friction, slope]);
+        }
+    }
+    Ok(samples)
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,289 @@
+use super::*;
+use crate::interface::oscillator::{FORCE_SOURCE, LAW, TABLE};
+
+fn values(law: &str) -> ValueSet {
+    let mut values = ValueSet::start(&TABLE);
+    values.set(vr::LAW, f64::from(LAW.value_of(law).unwrap()));
+    values
+}
+
+fn run(values: &ValueSet, step: f64, stop: f64) -> (Oscillator, Vec<Event>) {
+    let mut scene = Oscillator::new(values, 0.0).unwrap();
+    let mut log = Vec::new();
+    let held = values.real(vr::P_IN);
+    while scene.time() < stop - 1e-9 * step {
+        let h = step.min(stop - scene.time());
+        scene.step_logged(h, held, Some(&mut log)).unwrap();
+    }
+    (scene, log)
+}
+
+/// Oracle: without friction (h = 0) eq. 1 is a linear forced damped oscillator with a textbook
+/// closed form (steady harmonic response plus the decaying free response).
+#[test]
+fn without_friction_every_law_is_the_linear_closed_form() {
+    let (m, c, k, p, w): (f64, f64, f64, f64, f64) = (1.0, 0.1, 1.0, 4.0, 0.5);
+    let stop: f64 = 10.0;
+    let x = p / ((k - m * w * w).powi(2) + (c * w).powi(2)).sqrt();
+    let phi = (c * w).atan2(k - m * w * w);
+    let alpha = c / (2.0 * m);
+    let wd = (k / m - alpha * alpha).sqrt();
+    let a = x * phi.sin();
+    let b = (-x * w * phi.cos() + alpha * a) / wd;
+    let exact = x * (w * stop - phi).sin()
+        + (-alpha * stop).exp() * (a * (wd * stop).cos() + b * (wd * stop).sin());
+    for (law, tolerance) in [("exact", 1e-12), ("linear", 1e-7), ("trigonometric", 1e-7)] {
+        let mut v = values(law);
+        v.set(vr::H, 0.0);
+        v.set(vr::W, w);
+        let (scene, _) = run(&v, 0.1, stop);
+        let u = scene.state().u;
+        assert!((u - exact).abs() < tolerance, "{law}: {u} vs {exact}");
+    }
+}
+
+/// Oracle: statics. With P below h the force never overcomes friction: the exact mass never
+/// moves and H balances the excitation; the regularised laws creep by at most about D.
+#[test]
+fn stays_stuck_below_the_breakaway_force() {
+    let mut v = values("exact");
+    v.set(vr::P, 1.5);
+    let (scene, log) = run(&v, 0.37, 30.0);
+    assert!(log.is_empty(), "{log:?}");
+    assert_eq!((scene.state().u, scene.state().v), (0.0, 0.0));
+    let (friction, _, a) = scene.friction(0.0);
+    assert!((friction - 1.5 * 30f64.sin()).abs() < 1e-12);
+    assert_eq!(a, 0.0);
+    for law in ["linear", "trigonometric_stiction"] {
+        let mut v = values(law);
+        v.set(vr::P, 1.5);
+        v.set(vr::D, 1e-6);
+        let (scene, _) = run(&v, 0.37, 30.0);
+        assert!(scene.amplitude() < 1e-5, "{law}: {}", scene.amplitude());
+    }
+}
+
+/// Oracle: the switch conditions themselves. A stick starts with |F - k u| <= hs; a slip starts
+/// with |F - k u| = hs, the force on the side of the slip.
+#[test]
+fn events_satisfy_the_switch_conditions() {
+    for (law, p, w, h) in [("exact", 1.0, 0.5, 0.5), ("exact_stiction", 3.0, 0.5, 1.0)] {
+        let mut v = values(law);
+        v.set(vr::P, p);
+        v.set(vr::W, w);
+        v.set(vr::H, h);
+        v.set(vr::DA, v.real(vr::D));
+        let hs = if law == "exact" { h } else { 2.0 * h };
+        let (_, log) = run(&v, 0.3, 120.0);
+        for e in &log {
+            let f = p * (w * e.t).sin() - e.u;
+            match e.mode {
+                Mode::Stuck => assert!(f.abs() <= hs + 1e-12, "{law} t {}: {f}", e.t),
+                Mode::Sliding(s) => {
+                    // A slip starts at the breakaway force, or where a slide passes u' = 0
+                    // with the force beyond it (then no stick in between).
+                    assert!(s * f >= hs - 1e-9, "{law} t {}: {f}", e.t);
+                }
+            }
+        }
+        let sticks = log.iter().filter(|e| e.mode == Mode::Stuck).count();
+        let breakaways = log
+            .windows(2)
+            .filter(|p| p[0].mode == Mode::Stuck)
+            .map(|p| p[1])
+            .collect::<Vec<_>>();
+        for e in &breakaways {
+            let f = p * (w * e.t).sin() - e.u;
+            assert!(
+                (f.abs() - hs).abs() < 1e-12,
+                "{law} breakaway at {}: {f}",
+                e.t
+            );
+        }
+        assert!(sticks > 10, "{law}: {sticks} sticks");
+    }
+}
+
+/// Oracle: tests/reference/oscillator (scipy DOP853 at 1e-12, events, independent code).
+#[test]
+fn exact_matches_the_reference_solutions() {
+    let cases = include_str!("../../../tests/reference/oscillator/cases.csv");
+    let sticks = include_str!("../../../tests/reference/oscillator/stick_intervals.csv");
+    let header: Vec<&str> = cases.lines().next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    for row in cases.lines().skip(1) {
+        let f: Vec<&str> = row.split(',').collect();
+        let num = |name: &str| f[column(name)].parse::<f64>().unwrap();
+        let mut v = values(f[column("law")]);
+        let (h, hs) = (num("h"), num("hs"));
+        for (vr, name) in [
+            (vr::P, "P"),
+            (vr::W, "w"),
+            (vr::H, "h"),
+            (vr::C, "c"),
+            (vr::K, "k"),
+            (vr::M, "m"),
+        ] {
+            v.set(vr, num(name));
+        }
+        // ha = h Da/D: Da = D (hs - h)/h gives the reference's breakaway force.
+        if h > 0.0 {
+            v.set(vr::DA, v.real(vr::D) * (hs - h) / h);
+        }
+        let (stop, amplitude) = (num("stop_time"), num("amplitude"));
+        let (scene, log) = run(&v, stop / (num("periods") * 50.0), stop);
+        let rel = (scene.amplitude() / amplitude - 1.0).abs();
+        assert!(
+            rel < 1e-9,
+            "{}: amplitude {} vs {amplitude}",
+            f[0],
+            scene.amplitude()
+        );
+        assert!(
+            (scene.state().u - num("u_end")).abs() < 1e-8 * amplitude,
+            "{}",
+            f[0]
+        );
+        for stick in sticks
+            .lines()
+            .skip(1)
+            .filter(|l| l.starts_with(&format!("{},", f[0])))
+        {
+            let s: Vec<f64> = stick
+                .split(',')
+                .skip(1)
+                .map(|x| x.parse().unwrap())
+                .collect();
+            let start = log
+                .iter()
+                .find(|e| e.mode == Mode::Stuck && (e.t - s[0]).abs() < 1e-3);
+            let start = start.unwrap_or_else(|| panic!("{}: no stick at {}", f[0], s[0]));
+            let end = log
+                .iter()
+                .find(|e| e.mode != Mode::Stuck && e.t > start.t)
+                .unwrap();
+            assert!(
+                (start.t - s[0]).abs() < 1e-9,
+                "{}: {} vs {}",
+                f[0],
+                start.t,
+                s[0]
+            );
+            assert!(
+                (end.t - s[1]).abs() < 1e-9,
+                "{}: {} vs {}",
+                f[0],
+                end.t,
+                s[1]
+            );
+        }
+    }
+}
+
+/// Oracle: the exact law itself. Where the communication points fall must not matter: events
+/// are located inside steps, so steps of 1/50 period, 1 s and 7.3 s give the same motion.
+#[test]
+fn exact_does_not_depend_on_the_communication_step() {
+    let mut v = values("exact");
+    v.set(vr::P, 1.0);
+    v.set(vr::W, 0.5);
+    v.set(vr::H, 0.5);
+    let stop = 73.0;
+    let (reference, _) = run(&v, TAU / 0.5 / 50.0, stop);
+    for step in [1.0, 7.3] {
+        let (scene, _) = run(&v, step, stop);
+        assert!((scene.state().u - reference.state().u).abs() < 1e-11);
+        assert!((scene.state().v - reference.state().v).abs() < 1e-11);
+    }
+}
+
+/// Oracle: `exact`. As D -> 0 the regularised laws converge to the switch model; at D = 1e-6
+/// (slope h/D = 1.6e6) the default solver stays stable and lands within 1e-6 of it.
+#[test]
+fn regularised_laws_converge_to_exact_when_stiff() {
+    let stop = 20.0 * TAU;
+    let (exact, _) = run(&values("exact"), TAU / 50.0, stop);
+    for law in ["linear", "trigonometric"] {
+        let mut v = values(law);
+        v.set(vr::D, 1e-6);
+        let (scene, _) = run(&v, TAU / 50.0, stop);
+        let rel = (scene.amplitude() / exact.amplitude() - 1.0).abs();
+        assert!(
+            rel < 1e-6,
+            "{law}: {} vs {}",
+            scene.amplitude(),
+            exact.amplitude()
+        );
+    }
+    let (exact, _) = run(&values("exact_stiction"), TAU / 50.0, stop);
+    for law in ["linear_stiction", "trigonometric_stiction"] {
+        let mut v = values(law);
+        v.set(vr::D, 1e-6);
+        v.set(vr::DA, 1e-6);
+        let (scene, _) = run(&v, TAU / 50.0, stop);
+        let rel = (scene.amplitude() / exact.amplitude() - 1.0).abs();
+        assert!(
+            rel < 1e-5,
+            "{law}: {} vs {}",
+            scene.amplitude(),
+            exact.amplitude()
+        );
+    }
+}
+
+/// Oracle: determinism. Restoring a saved state replays the same motion bit for bit.
+#[test]
+fn save_and_restore_replay_the_motion() {
+    for law in ["exact", "trigonometric"] {
+        let v = values(law);
+        let mut scene = Oscillator::new(&v, 0.0).unwrap();
+        scene.do_step(3.0, &v).unwrap();
+        let saved = scene.save();
+        scene.do_step(2.0, &v).unwrap();
+        let after = scene.save();
+        scene.restore(&saved).unwrap();
+        scene.do_step(2.0, &v).unwrap();
+        assert_eq!(scene.save(), after, "{law}");
+        assert!(scene.restore(&[1.0, 2.0]).is_err());
+    }
+}
+
+/// Oracle: the input path equals the prescribed one when the input is the same force, held
+/// over steps short enough (zero-order hold error ~ step).
+#[test]
+fn input_force_follows_the_input() {
+    let mut prescribed = Oscillator::new(&values("exact"), 0.0).unwrap();
+    let mut v = values("exact");
+    v.set(
+        vr::FORCE_SOURCE,
+        f64::from(FORCE_SOURCE.value_of("input").unwrap()),
+    );
+    let mut input = Oscillator::new(&v, 0.0).unwrap();
+    let step = 1e-3;
+    for i in 0..10_000 {
+        let t = (f64::from(i) + 0.5) * step;
+        prescribed.step_logged(step, 0.0, None).unwrap();
+        input.step_logged(step, 4.0 * t.sin(), None).unwrap();
+    }
+    let (a, b) = (prescribed.state().u, input.state().u);
+    assert!((a - b).abs() < 1e-5 * a.abs().max(1.0), "{a} vs {b}");
+}
+
+#[test]
+fn bad_parameters_are_refused_with_the_expected_range() {
+    for (vr, x, expected) in [
+        (vr::M, 0.0, "m > 0"),
+        (vr::W, 0.0, "w > 0"),
+        (vr::D, 0.0, "D > 0"),
+        (vr::C, -1.0, "c >= 0"),
+        (vr::H, f64::NAN, "h >= 0"),
+        (vr::DA, -0.1, "Da >= 0"),
+    ] {
+        let mut v = values("linear");
+        v.set(vr, x);
+        let err = Oscillator::new(&v, 0.0).unwrap_err();
+        assert!(err.contains(expected), "{err}");
+    }
+    let mut scene = Oscillator::new(&values("exact"), 0.0).unwrap();
+    assert!(scene.step_logged(0.0, 0.0, None).is_err());
+}
