@@ -12,6 +12,7 @@ pub mod vr {
     pub const VELOCITY_SOURCE: u32 = 2;
     pub const SOLVER: u32 = 3;
     pub const STEPS_PER_PERIOD: u32 = 4;
+    pub const TOLERANCE: u32 = 5;
     pub const M: u32 = 10;
     pub const MU: u32 = 11;
     pub const G: u32 = 12;
@@ -59,10 +60,24 @@ pub const VELOCITY_SOURCE: EnumType = EnumType {
 
 pub const SOLVER: EnumType = EnumType {
     name: "LongitudinalSolver",
-    items: &[(
-        "exponential",
-        "Exact bristle update for the velocity frozen at each sub-step's midpoint, sub-steps split where vr changes sign",
-    )],
+    items: &[
+        (
+            "exponential",
+            "Exact bristle update for the velocity frozen at each sub-step's midpoint, sub-steps split where vr changes sign",
+        ),
+        (
+            "rk4",
+            "Classical Runge-Kutta on the bristle ODE and the force integral, one step per sub-step",
+        ),
+        (
+            "dopri5",
+            "Adaptive Dormand-Prince 5(4) to `tolerance` on the bristle ODE, restarted where vr changes sign and at period boundaries",
+        ),
+        (
+            "radau5",
+            "Adaptive 3-stage Radau IIA (order 5, L-stable) to `tolerance`, restarted where vr changes sign and at period boundaries",
+        ),
+    ],
 };
 
 const VARIABLES: &[Variable] = &[
@@ -82,6 +97,15 @@ const VARIABLES: &[Variable] = &[
         2000,
         4,
         10_000_000,
+    ),
+    real_parameter(
+        "tolerance",
+        vr::TOLERANCE,
+        "Relative tolerance of dopri5 and radau5",
+        1e-8,
+        "",
+        1e-14,
+        1e-2,
     ),
     real_parameter(
         "m",

@@ -6,7 +6,9 @@ use crate::interface::variable::{Causality, Kind, ModelTable};
 fn equations(model_identifier: &str) -> &'static str {
     match model_identifier {
         "LongitudinalFriction" => include_str!("docs/LongitudinalFriction.html"),
-        _ => "<p>No description written for this model yet.</p>",
+        "TransverseFriction" => include_str!("docs/TransverseFriction.html"),
+        "DryFrictionOscillator" => include_str!("docs/DryFrictionOscillator.html"),
+        _ => "",
     }
 }
 
@@ -70,4 +72,22 @@ pub fn page(table: &ModelTable) -> String {
         description = escape(table.description),
         equations = equations(table.model_identifier),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{equations, page};
+
+    /// Every model ships a written description, and its page lists every variable.
+    #[test]
+    fn every_model_has_a_documentation_page() {
+        for model in crate::scenes::MODELS {
+            let id = model.table.model_identifier;
+            assert!(equations(id).contains("<h2>Source</h2>"), "{id} has no description");
+            let html = page(model.table);
+            for v in model.table.variables {
+                assert!(html.contains(&format!("<code>{}</code>", v.name)), "{id}: {}", v.name);
+            }
+        }
+    }
 }

@@ -2,16 +2,21 @@
 //! eq. 2.1-2.4), or at a velocity given as an input; the friction force and its mean over the
 //! last vibration period.
 //!
-//! One state (the bristle deflection z; none for Coulomb). Sub-steps are at most 1/n of a period
-//! and end where vr changes sign (|vr| has a kink there, and Coulomb friction jumps), so the
-//! velocity frozen at each sub-step's midpoint gives a second-order scheme whose bristle update is
-//! exact and stable at any stiffness.
+//! One state (the bristle deflection z; none for Coulomb). Sub-steps end where vr changes sign
+//! (|vr| has a kink there, and Coulomb friction jumps) and at period boundaries. The default
+//! `exponential` solver also cuts them at 1/n of a period and freezes the velocity at each
+//! sub-step's midpoint: a second-order scheme whose bristle update is exact and stable at any
+//! stiffness. The general solvers ([`ode`]) integrate z with the force integral as a second state.
+
+mod ode;
 
 use super::period_mean::PeriodMean;
 use super::{require_positive, Scene};
 use crate::friction::{coulomb, dahl::Dahl, lugre::LuGre};
 use crate::interface::longitudinal::vr;
 use crate::interface::values::ValueSet;
+use crate::solve::Work;
+use ode::Solver;
 use std::f64::consts::TAU;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -37,11 +42,13 @@ pub struct Longitudinal {
     pub fc: f64,
     pub f: f64,
     pub steps_per_period: u32,
+    pub solver: Solver,
     t: f64,
     z: f64,
     /// The input velocity held over the current step.
     v_held: f64,
     mean: PeriodMean,
+    pub work: Work,
 }
 
 pub fn build(values: &ValueSet, start_time: f64) -> Result<Box<dyn Scene>, String> {
@@ -84,16 +91,26 @@ impl Longitudinal {
                 va: values.real(vr::VA),
             },
         };
+        let steps_per_period = values.integer(vr::STEPS_PER_PERIOD);
+        if steps_per_period < 1 {
+            return Err(format!(
+                "steps_per_period = {steps_per_period} is out of range: expected steps_per_period >= 1"
+            ));
+        }
+        let steps_per_period = steps_per_period as u32;
+        let solver = Solver::new(values, law, fc, f, steps_per_period)?;
         Ok(Longitudinal {
             law,
             velocity,
             fc,
             f,
-            steps_per_period: values.integer(vr::STEPS_PER_PERIOD) as u32,
+            steps_per_period,
+            solver,
             t: start_time,
             z: 0.0,
             v_held: values.real(vr::VR_IN),
             mean: PeriodMean::new(start_time, 1.0 / f),
+            work: Work::default(),
         })
     }
 
@@ -122,19 +139,22 @@ impl Longitudinal {
         self.mean.value(self.t, self.friction_force())
     }
 
-    /// The end of the sub-step starting at `t`: the next grid point (1/n period), sign change of
-    /// vr, or period boundary, whichever comes first, but not past `t_end`.
+    /// The end of the sub-step starting at `t`: the next grid point (1/n period, fixed-step
+    /// solvers only), sign change of vr, or period boundary, whichever comes first, but not past
+    /// `t_end`.
     fn substep_end(&self, t: f64, t_end: f64) -> f64 {
         let mut next = t_end.min(self.mean.next_boundary());
         if let Velocity::Prescribed { vc, va } = self.velocity {
             let n = f64::from(self.steps_per_period);
             let phase = t * self.f;
-            // The grid point after t; phase*n can round just below an integer we already reached.
-            let mut j = (phase * n).floor() + 1.0;
-            if j / (n * self.f) <= t {
-                j += 1.0;
+            if self.solver.fixed_step() {
+                // The grid point after t; phase*n can round just below an integer we reached.
+                let mut j = (phase * n).floor() + 1.0;
+                if j / (n * self.f) <= t {
+                    j += 1.0;
+                }
+                next = next.min(j / (n * self.f));
             }
-            next = next.min(j / (n * self.f));
             if vc.abs() < va {
                 // vr = 0 where cos(2 pi phase) = -vc/va: at phase fractions p and 1 - p.
                 let p = (-vc / va).acos() / TAU;
@@ -160,9 +180,19 @@ impl Longitudinal {
         }
     }
 
-    fn substep(&mut self, t0: f64, t1: f64) {
+    fn substep(&mut self, t0: f64, t1: f64) -> Result<(), String> {
+        if !matches!(self.solver, Solver::Exponential) && self.law != Law::Coulomb {
+            let velocity = |t: f64| self.velocity_at(t);
+            let integral =
+                self.solver
+                    .advance(&self.law, &velocity, t0, t1, &mut self.z, &mut self.work)?;
+            self.mean.add(integral, t1);
+            return Ok(());
+        }
         let h = t1 - t0;
         let v = self.velocity_at(0.5 * (t0 + t1));
+        self.work.steps += 1;
+        self.work.rhs_evaluations += 1;
         let integral = match self.law {
             Law::Coulomb => coulomb::force(self.fc, v) * h,
             Law::Dahl(law) => {
@@ -177,6 +207,7 @@ impl Longitudinal {
             }
         };
         self.mean.add(integral, t1);
+        Ok(())
     }
 }
 
@@ -189,7 +220,7 @@ impl Scene for Longitudinal {
         let mut t = self.t;
         while t < t_end {
             let next = self.substep_end(t, t_end);
-            self.substep(t, next);
+            self.substep(t, next)?;
             t = next;
         }
         self.t = t_end;
@@ -224,20 +255,22 @@ impl Scene for Longitudinal {
     fn save(&self) -> Vec<f64> {
         let mut state = vec![self.t, self.z, self.v_held];
         state.extend(self.mean.save());
+        state.push(self.solver.step_hint());
         state
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
-        if state.len() != 6 || state.iter().any(|x| !x.is_finite()) {
+        if state.len() != 7 || state.iter().any(|x| !x.is_finite()) {
             return Err(format!(
-                "a LongitudinalFriction state has 6 finite numbers, got {}",
+                "a LongitudinalFriction state has 7 finite numbers, got {}",
                 state.len()
             ));
         }
         self.t = state[0];
         self.z = state[1];
         self.v_held = state[2];
-        self.mean.restore(&state[3..]);
+        self.mean.restore(&state[3..6]);
+        self.solver.set_step_hint(state[6]);
         Ok(())
     }
 }

@@ -1,0 +1,189 @@
+//! The work-precision studies of the `report` command, one per scene (two for scene T, one per
+//! slip law): the experiment, the quantity, the solvers and the settings swept.
+
+use super::work_precision::{Case, Knob, Setting};
+use crate::interface::values::ValueSet;
+use crate::interface::variable::EnumType;
+use crate::interface::{longitudinal as il, oscillator as io, transverse as it};
+use crate::scenes::longitudinal::Longitudinal;
+use crate::scenes::oscillator::Oscillator;
+use crate::scenes::transverse::Transverse;
+use crate::scenes::Scene;
+use crate::solve::Work;
+
+fn tolerances(solver: &'static str, from: i32, to: i32) -> Vec<Setting> {
+    (from..=to)
+        .map(|k| Setting {
+            solver,
+            knob: Knob::Tolerance(10f64.powi(-k)),
+        })
+        .collect()
+}
+
+fn steps(solver: &'static str, counts: &[u32]) -> Vec<Setting> {
+    counts
+        .iter()
+        .map(|&n| Setting {
+            solver,
+            knob: Knob::StepsPerPeriod(n),
+        })
+        .collect()
+}
+
+fn item(e: &EnumType, name: &str) -> Result<f64, String> {
+    e.value_of(name)
+        .map(f64::from)
+        .ok_or_else(|| format!("{} has no item {name}", e.name))
+}
+
+/// Scene L at Table 1's row vc = 0.146 m/s, Dahl law: FT_mean over the 30th vibration period.
+pub fn longitudinal() -> Case {
+    const PERIODS: u32 = 30;
+    let mut settings = steps("exponential", &[25, 50, 100, 200, 400, 800, 1600, 3200]);
+    settings.extend(steps("rk4", &[25, 50, 100, 200, 400, 800, 1600]));
+    settings.extend(tolerances("dopri5", 3, 10));
+    settings.extend(tolerances("radau5", 3, 10));
+    let run = |s: &Setting| -> Result<(f64, Work), String> {
+        let mut v = ValueSet::start(&il::TABLE);
+        v.set(il::vr::LAW, item(&il::LAW, "dahl")?);
+        v.set(il::vr::VC, 0.146);
+        v.set(il::vr::SOLVER, item(&il::SOLVER, s.solver)?);
+        match s.knob {
+            Knob::StepsPerPeriod(n) => v.set(il::vr::STEPS_PER_PERIOD, f64::from(n)),
+            Knob::Tolerance(t) => v.set(il::vr::TOLERANCE, t),
+        }
+        let mut scene = Longitudinal::new(&v, 0.0)?;
+        let period = 1.0 / scene.f;
+        for _ in 0..PERIODS {
+            scene.do_step(period, &v)?;
+        }
+        Ok((scene.mean_force(), scene.work))
+    };
+    Case {
+        stem: "longitudinal",
+        title: format!(
+            "LongitudinalFriction, Dahl, vc = 0.146 m/s (Table 1), FT_mean of period {PERIODS}"
+        ),
+        quantity: "FT_mean",
+        settings,
+        reference: (
+            Setting {
+                solver: "dopri5",
+                knob: Knob::Tolerance(1e-13),
+            },
+            Setting {
+                solver: "dopri5",
+                knob: Knob::Tolerance(1e-12),
+            },
+        ),
+        run: Box::new(run),
+    }
+}
+
+/// Scene T at vd = 0.5 mm/s, va = 2 mm/s, f = 3 kHz, from steady sliding, over 0.05 s: the mean
+/// of FFx over the last vibration period.
+pub fn transverse(slip_law: &'static str) -> Case {
+    const PERIODS: u32 = 150;
+    let mut settings = tolerances("dopri5", 4, 10);
+    settings.extend(tolerances("exponential", 4, 10));
+    settings.extend(steps("rk4", &[50, 100, 200, 400, 800, 1600]));
+    settings.extend(steps("two_phase", &[100, 400, 1600, 6400, 25600]));
+    let run = move |s: &Setting| -> Result<(f64, Work), String> {
+        let mut v = ValueSet::start(&it::TABLE);
+        v.set(it::vr::SLIP_LAW, item(&it::SLIP_LAW, slip_law)?);
+        v.set(it::vr::INITIAL, item(&it::INITIAL, "sliding")?);
+        v.set(it::vr::VD, 5e-4);
+        v.set(it::vr::VA, 2e-3);
+        v.set(it::vr::F, 3000.0);
+        v.set(it::vr::SOLVER, item(&it::SOLVER, s.solver)?);
+        match s.knob {
+            Knob::StepsPerPeriod(n) => v.set(it::vr::STEPS_PER_PERIOD, f64::from(n)),
+            Knob::Tolerance(t) => v.set(it::vr::TOLERANCE, t),
+        }
+        let mut scene = Transverse::new(&v, 0.0)?;
+        let period = 1.0 / 3000.0;
+        for _ in 0..PERIODS {
+            scene.do_step(period, &v)?;
+        }
+        Ok((scene.mean_ffx(), scene.work))
+    };
+    Case {
+        stem: if slip_law == "total" {
+            "transverse_total"
+        } else {
+            "transverse_split"
+        },
+        title: format!(
+            "TransverseFriction, {slip_law} slip, vd 0.5 mm/s, va 2 mm/s, f 3 kHz, 0.05 s: FFx_mean"
+        ),
+        quantity: "FFx_mean",
+        settings,
+        reference: (
+            Setting {
+                solver: "dopri5",
+                knob: Knob::Tolerance(1e-12),
+            },
+            Setting {
+                solver: "dopri5",
+                knob: Knob::Tolerance(1e-11),
+            },
+        ),
+        run: Box::new(run),
+    }
+}
+
+/// Scene O at the paper's case (trigonometric law, D = 0.8, from rest): the amplitude max |u|
+/// over the 60th forcing period.
+pub fn oscillator() -> Case {
+    const PERIODS: u32 = 60;
+    let mut settings = tolerances("radau5", 3, 10);
+    settings.extend(tolerances("dopri5", 3, 10));
+    settings.extend(steps("rk4", &[16, 32, 64, 128, 256, 512, 1024]));
+    let run = |s: &Setting| -> Result<(f64, Work), String> {
+        let mut v = ValueSet::start(&io::TABLE);
+        v.set(io::vr::LAW, item(&io::LAW, "trigonometric")?);
+        v.set(io::vr::SOLVER, item(&io::SOLVER, s.solver)?);
+        match s.knob {
+            Knob::StepsPerPeriod(n) => v.set(io::vr::STEPS_PER_PERIOD, f64::from(n)),
+            Knob::Tolerance(t) => {
+                v.set(io::vr::RTOL, t);
+                v.set(io::vr::ATOL, t);
+            }
+        }
+        let mut scene = Oscillator::new(&v, 0.0)?;
+        // Communication steps of 1/50 period, as steady_amplitude.
+        let step = std::f64::consts::TAU / v.real(io::vr::W) / 50.0;
+        for _ in 0..PERIODS * 50 {
+            scene.do_step(step, &v)?;
+        }
+        Ok((scene.amplitude(), scene.work))
+    };
+    Case {
+        stem: "oscillator",
+        title: format!(
+            "DryFrictionOscillator, trigonometric law, paper's case: u_amplitude of period {PERIODS}"
+        ),
+        quantity: "u_amplitude",
+        settings,
+        reference: (
+            Setting {
+                solver: "radau5",
+                knob: Knob::Tolerance(1e-13),
+            },
+            Setting {
+                solver: "radau5",
+                knob: Knob::Tolerance(1e-12),
+            },
+        ),
+        run: Box::new(run),
+    }
+}
+
+pub fn all() -> Vec<Case> {
+    vec![
+        longitudinal(),
+        transverse("split"),
+        transverse("total"),
+        oscillator(),
+    ]
+}

@@ -1,0 +1,220 @@
+//! Error against run time (SPEC.md, "Numerics the user asked for"): for one scene, every solver
+//! it offers over a range of steps or tolerances, the relative error of the quantity a user reads
+//! (a mean force, an amplitude) against a reference run far more accurate, the run time and the
+//! right-hand-side evaluations; written as a Markdown table and a log-log SVG plot.
+//!
+//! The reference is the best solver at a setting well beyond the table's; a second reference at
+//! a neighbouring setting estimates its own error, which the table prints so a reader can check
+//! it is at least 100 times below the smallest error shown.
+
+use super::progress::Progress;
+use super::svg::{Plot, Series};
+use crate::solve::Work;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// How a solver's accuracy is chosen.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Knob {
+    /// Relative tolerance of an adaptive solver.
+    Tolerance(f64),
+    /// Fixed steps per vibration (or forcing) period.
+    StepsPerPeriod(u32),
+}
+
+impl Knob {
+    pub fn label(&self) -> String {
+        match self {
+            Knob::Tolerance(t) => format!("rtol {t:.0e}"),
+            Knob::StepsPerPeriod(n) => format!("{n} steps/period"),
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Setting {
+    pub solver: &'static str,
+    pub knob: Knob,
+}
+
+/// One scene's work-precision study.
+pub struct Case {
+    /// File stem under the output directory (`longitudinal` writes longitudinal.md/.svg).
+    pub stem: &'static str,
+    /// What is run, in a sentence (title of the table and the plot).
+    pub title: String,
+    /// The quantity whose error is measured.
+    pub quantity: &'static str,
+    pub settings: Vec<Setting>,
+    /// The reference and a neighbour of it (for the reference's own error).
+    pub reference: (Setting, Setting),
+    /// Runs one setting: the quantity and the work it took.
+    pub run: Box<dyn Fn(&Setting) -> Result<(f64, Work), String>>,
+}
+
+pub struct Row {
+    pub setting: Setting,
+    /// Relative error against the reference; None when the run failed.
+    pub error: Option<f64>,
+    pub seconds: f64,
+    pub work: Work,
+    pub failure: Option<String>,
+}
+
+pub struct Study {
+    pub reference: f64,
+    /// |reference - neighbour| / |reference|.
+    pub reference_error: f64,
+    pub rows: Vec<Row>,
+}
+
+/// Short runs are repeated until this much time has passed, and the fastest repeat is kept, so
+/// timer resolution and one-off stalls do not show in the table.
+const MIN_TIMED: Duration = Duration::from_millis(50);
+const MAX_REPEATS: u32 = 20;
+
+fn timed(case: &Case, setting: &Setting) -> (Result<(f64, Work), String>, f64) {
+    let started = Instant::now();
+    let mut best = f64::INFINITY;
+    let mut result;
+    let mut repeats = 0;
+    loop {
+        let t = Instant::now();
+        result = (case.run)(setting);
+        best = best.min(t.elapsed().as_secs_f64());
+        repeats += 1;
+        if result.is_err() || started.elapsed() >= MIN_TIMED || repeats >= MAX_REPEATS {
+            break;
+        }
+    }
+    (result, best)
+}
+
+pub fn study(case: &Case, progress: &mut Progress) -> Result<Study, String> {
+    progress.draw(&format!("{} reference", case.stem));
+    let (reference, _) = (case.run)(&case.reference.0)
+        .map_err(|e| format!("{}: the reference run failed: {e}", case.stem))?;
+    let (neighbour, _) = (case.run)(&case.reference.1)
+        .map_err(|e| format!("{}: the second reference run failed: {e}", case.stem))?;
+    progress.tick(&format!("{} reference", case.stem));
+    let reference_error = ((neighbour - reference) / reference).abs();
+    let mut rows = Vec::new();
+    for setting in &case.settings {
+        progress.draw(&format!(
+            "{} {} {}",
+            case.stem,
+            setting.solver,
+            setting.knob.label()
+        ));
+        let (result, seconds) = timed(case, setting);
+        let row = match result {
+            Ok((value, work)) => Row {
+                setting: *setting,
+                error: Some(((value - reference) / reference).abs()),
+                seconds,
+                work,
+                failure: None,
+            },
+            Err(e) => Row {
+                setting: *setting,
+                error: None,
+                seconds,
+                work: Work::default(),
+                failure: Some(e),
+            },
+        };
+        rows.push(row);
+        progress.tick(setting.solver);
+    }
+    Ok(Study {
+        reference,
+        reference_error,
+        rows,
+    })
+}
+
+pub fn markdown(case: &Case, study: &Study) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "# {}\n", case.title);
+    let _ = writeln!(
+        s,
+        "Reference {} = {:.12e} ({} {}); its estimated relative error (against {}) {:.1e}.\n",
+        case.quantity,
+        study.reference,
+        case.reference.0.solver,
+        case.reference.0.knob.label(),
+        case.reference.1.knob.label(),
+        study.reference_error,
+    );
+    let _ = writeln!(
+        s,
+        "| solver | step or tolerance | rel. error of {} | time (s) | RHS evaluations | steps | rejected |",
+        case.quantity
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+    for r in &study.rows {
+        let error = match (&r.error, &r.failure) {
+            (Some(e), _) => format!("{e:.2e}"),
+            (None, Some(f)) => format!("failed: {}", f.replace('|', "/")),
+            _ => "-".into(),
+        };
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {:.3e} | {} | {} | {} |",
+            r.setting.solver,
+            r.setting.knob.label(),
+            error,
+            r.seconds,
+            r.work.rhs_evaluations,
+            r.work.steps,
+            r.work.rejected
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\nTime: the fastest of repeated single-threaded runs (wall clock of one core, the process otherwise idle)."
+    );
+    s
+}
+
+pub fn plot(case: &Case, study: &Study) -> Plot {
+    let mut plot = Plot::new(&case.title, "run time (s)", "relative error").log_log();
+    let mut solvers: Vec<&str> = Vec::new();
+    for r in &study.rows {
+        if !solvers.contains(&r.setting.solver) {
+            solvers.push(r.setting.solver);
+        }
+    }
+    for solver in solvers {
+        let points: Vec<(f64, f64)> = study
+            .rows
+            .iter()
+            .filter(|r| r.setting.solver == solver)
+            .filter_map(|r| r.error.map(|e| (r.seconds, e)))
+            .collect();
+        plot = plot.add(Series::line(solver, points).with_markers());
+    }
+    plot
+}
+
+/// Runs every case and writes `<out>/<stem>.md` and `<out>/<stem>.svg`; returns the paths.
+pub fn write_all(cases: &[Case], out: &Path) -> Result<Vec<PathBuf>, String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let total: usize = cases.iter().map(|c| c.settings.len() + 1).sum();
+    let mut progress = Progress::new(total);
+    let mut written = Vec::new();
+    for case in cases {
+        let study = study(case, &mut progress)?;
+        let md = out.join(format!("{}.md", case.stem));
+        std::fs::write(&md, markdown(case, &study)).map_err(|e| format!("{}: {e}", md.display()))?;
+        let svg = out.join(format!("{}.svg", case.stem));
+        plot(case, &study)
+            .write(&svg)
+            .map_err(|e| format!("{}: {e}", svg.display()))?;
+        written.push(md);
+        written.push(svg);
+    }
+    progress.finish();
+    Ok(written)
+}
