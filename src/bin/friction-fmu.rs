@@ -3,12 +3,15 @@
 //!   friction-fmu build [--out DIR]   pack every model into DIR/<Model>.fmu (default fmu-out)
 //!   friction-fmu run [--out DIR]     build, then print each scene's tables beside the papers'
 //!                                    and write figures into DIR/figures (the default command)
+//!   friction-fmu report [--out DIR]  error against run time of every solver of every scene:
+//!                                    DIR/<scene>.md tables and DIR/<scene>.svg plots
+//!                                    (default DIR: report)
 
 use friction_fmu::{package, report, scenes};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: friction-fmu [build|run] [--out DIR]\n  build  pack every model into DIR/<Model>.fmu (default DIR: fmu-out)\n  run    build, then print the scenes' tables beside the papers' and write figures into DIR/figures";
+const USAGE: &str = "usage: friction-fmu [build|run|report] [--out DIR]\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out)\n  run     build, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.svg (default DIR: report)";
 
 fn build(out: &Path) -> Result<(), String> {
     let exe = std::env::current_exe().map_err(|e| format!("cannot locate this program: {e}"))?;
@@ -42,16 +45,25 @@ fn run(out: &Path) -> Result<(), String> {
     Ok(())
 }
 
+fn work_precision(out: &Path) -> Result<(), String> {
+    for path in report::work_precision::write_all(&report::cases::all(), out)? {
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let mut command = "run";
-    let mut out = PathBuf::from("fmu-out");
+    let mut out = None;
     let mut i = 0;
     while i < args.len() {
         match args[i].as_str() {
-            "build" | "run" => command = if args[i] == "build" { "build" } else { "run" },
+            "build" => command = "build",
+            "run" => command = "run",
+            "report" => command = "report",
             "--out" if i + 1 < args.len() => {
-                out = PathBuf::from(&args[i + 1]);
+                out = Some(PathBuf::from(&args[i + 1]));
                 i += 1;
             }
             "-h" | "--help" => {
@@ -65,10 +77,10 @@ fn main() -> ExitCode {
         }
         i += 1;
     }
-    let result = if command == "build" {
-        build(&out)
-    } else {
-        run(&out)
+    let result = match command {
+        "build" => build(&out.unwrap_or_else(|| PathBuf::from("fmu-out"))),
+        "report" => work_precision(&out.unwrap_or_else(|| PathBuf::from("report"))),
+        _ => run(&out.unwrap_or_else(|| PathBuf::from("fmu-out"))),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -4,7 +4,7 @@
 //! refusal instead of a crash), turn pointers into slices, dispatch to [`Instance`], return.
 
 use super::ffi::*;
-use super::instance::{Instance, Phase, STATE_PHASES};
+use super::instance::{Instance, Phase, READABLE, STATE_PHASES, WRITABLE};
 use super::logger::Logger;
 use super::snapshot::Snapshot;
 use crate::interface::variable::Kind;
@@ -656,6 +656,10 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
     _dv_unknown: *mut Real,
 ) -> Status {
     with_instance(c, |instance| {
+        // A call in the wrong state is refused as such first, naming the state.
+        if let Err(status) = instance.check_phase("fmi2GetDirectionalDerivative", READABLE) {
+            return status;
+        }
         instance.error(
             "fmi2GetDirectionalDerivative is not supported (providesDirectionalDerivative = false)",
         )
@@ -673,6 +677,9 @@ pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     _value: *const Real,
 ) -> Status {
     with_instance(c, |instance| {
+        if let Err(status) = instance.check_phase("fmi2SetRealInputDerivatives", WRITABLE) {
+            return status;
+        }
         instance.error("fmi2SetRealInputDerivatives is not supported (canInterpolateInputs = false): inputs are held over each step")
     })
 }
@@ -688,6 +695,17 @@ pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
     _value: *mut Real,
 ) -> Status {
     with_instance(c, |instance| {
+        if let Err(status) = instance.check_phase(
+            "fmi2GetRealOutputDerivatives",
+            &[
+                Phase::StepComplete,
+                Phase::StepFailed,
+                Phase::Terminated,
+                Phase::Error,
+            ],
+        ) {
+            return status;
+        }
         instance
             .error("fmi2GetRealOutputDerivatives is not supported (MaxOutputDerivativeOrder = 0)")
     })
@@ -715,7 +733,7 @@ pub unsafe extern "C" fn fmi2DoStep(
 #[no_mangle]
 pub unsafe extern "C" fn fmi2CancelStep(c: Component) -> Status {
     with_instance(c, |instance| {
-        instance.error("fmi2CancelStep: fmi2DoStep never returns fmi2Pending here, so there is no step to cancel")
+        instance.error(&format!("fmi2CancelStep is not allowed in state {}: expected StepPending, which never occurs here (fmi2DoStep never returns fmi2Pending)", instance.phase.name()))
     })
 }
 
@@ -773,6 +791,9 @@ pub unsafe extern "C" fn fmi2GetIntegerStatus(
     _value: *mut Integer,
 ) -> Status {
     with_instance(c, |instance| {
+        if let Err(status) = instance.check_phase("fmi2GetIntegerStatus", STATUS_PHASES) {
+            return status;
+        }
         instance.error(&format!(
             "fmi2GetIntegerStatus: status kind {kind}: no Integer status is defined by FMI 2.0"
         ))
@@ -819,6 +840,9 @@ pub unsafe extern "C" fn fmi2GetStringStatus(
     _value: *mut FmiString,
 ) -> Status {
     with_instance(c, |instance| {
+        if let Err(status) = instance.check_phase("fmi2GetStringStatus", STATUS_PHASES) {
+            return status;
+        }
         instance.error(&format!(
             "fmi2GetStringStatus: status kind {kind}: fmi2PendingStatus ({PENDING_STATUS}) is the only one, and no step is ever pending here"
         ))

@@ -22,7 +22,7 @@ pub enum Phase {
 }
 
 impl Phase {
-    fn name(self) -> &'static str {
+    pub fn name(self) -> &'static str {
         match self {
             Phase::Instantiated => "Instantiated",
             Phase::InitializationMode => "InitializationMode",
@@ -54,13 +54,15 @@ impl Phase {
 use Phase::*;
 
 /// The phases in which getters answer (the spec also allows them after an error, for debugging).
-const READABLE: &[Phase] = &[
+pub const READABLE: &[Phase] = &[
     InitializationMode,
     StepComplete,
     StepFailed,
     Terminated,
     Error,
 ];
+/// The phases in which inputs and parameters may be set.
+pub const WRITABLE: &[Phase] = &[Instantiated, InitializationMode, StepComplete];
 /// The phases in which an FMU state may be taken or restored.
 pub const STATE_PHASES: &[Phase] = &[
     Instantiated,
@@ -299,6 +301,19 @@ impl Instance {
                 return status;
             }
         }
+        // As in do_step: no NaN reaches the master silently (a scene can produce one where it
+        // cannot be evaluated, e.g. at an absurd start time).
+        if let Some(var) = vars
+            .iter()
+            .find(|v| !self.values.real(v.value_reference).is_finite())
+        {
+            return self.error(&format!(
+                "{function}: {} is {} at t = {}: the model cannot be evaluated there; expected a finite value",
+                var.name,
+                self.values.real(var.value_reference),
+                self.time
+            ));
+        }
         for (slot, var) in out.iter_mut().zip(&vars) {
             *slot = self.values.real(var.value_reference);
         }
@@ -315,9 +330,7 @@ impl Instance {
         accepts: fn(&Kind) -> bool,
         type_name: &str,
     ) -> Status {
-        if let Err(status) =
-            self.check_phase(function, &[Instantiated, InitializationMode, StepComplete])
-        {
+        if let Err(status) = self.check_phase(function, WRITABLE) {
             return status;
         }
         for (&vr, &value) in value_references.iter().zip(values) {

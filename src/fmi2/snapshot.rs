@@ -4,6 +4,8 @@
 //! corrupted or foreign data is refused with a message instead of being loaded.
 
 use super::instance::{Instance, Phase};
+use crate::interface::values::check_value;
+use crate::interface::variable::{Causality, Kind};
 
 const MAGIC: &[u8; 8] = b"FRICFMU\x01";
 
@@ -52,6 +54,24 @@ impl Snapshot {
                 self.values.len(),
                 instance.values.as_slice().len()
             ));
+        }
+        // Only values the setters would accept (outputs are recomputed from the scene). An
+        // Integer or Enumeration arrives through fmi2SetInteger, so it is a whole number; check
+        // that here, as check_value lets NaN and fractions through for those kinds.
+        let table = instance.model.table;
+        for var in table.variables {
+            if var.causality != Causality::Output {
+                let value = values.real(var.value_reference);
+                let whole = matches!(var.kind, Kind::Real { .. }) || value.fract() == 0.0;
+                if !whole {
+                    return Err(format!(
+                        "the FMU state holds {} = {value}: expected a whole number",
+                        var.name
+                    ));
+                }
+                check_value(table, var, value)
+                    .map_err(|message| format!("the FMU state holds {message}"))?;
+            }
         }
         let scene = match &self.scene {
             None => None,
@@ -159,6 +179,17 @@ impl Snapshot {
         };
         if next("its end").is_ok() {
             return Err(corrupt("it has trailing data"));
+        }
+        // Times the setters would refuse must not come in this way either: a scene built at a
+        // start time of -inf never finishes a step.
+        let finite_times = [start_time, time, last_successful_time]
+            .iter()
+            .all(|t| t.is_finite());
+        let ordered = start_time <= last_successful_time && last_successful_time <= time;
+        if !finite_times || !ordered || stop < start_time {
+            return Err(corrupt(&format!(
+                "its times (start {start_time}, last successful {last_successful_time}, now {time}, stop {stop}) are not finite and in that order"
+            )));
         }
         Ok(Snapshot {
             owner,

@@ -67,19 +67,32 @@ impl Contact {
 }
 
 impl LuGre2d {
+    /// exp(-(v/vs)^2), the Stribeck weight of g and ht. Beyond (v/vs)^2 = 745 exp underflows to
+    /// 0 anyway; returning 0 there (tested without a division) skips libm's slow underflow path,
+    /// which is where sliding spends almost all its time (v is hundreds of vs).
+    fn stribeck(&self, v: f64) -> f64 {
+        let vs2 = self.vs * self.vs;
+        if v * v < 745.0 * vs2 {
+            (-(v * v) / vs2).exp()
+        } else {
+            0.0
+        }
+    }
+
     /// Stribeck deflection g(v) = (FC + (FS - FC) exp(-(v/vs)^2)) / kt (eq. 4), m.
     pub fn g(&self, v: f64) -> f64 {
-        (self.fc + (self.fs - self.fc) * (-(v / self.vs).powi(2)).exp()) / self.kt
+        (self.fc + (self.fs - self.fc) * self.stribeck(v)) / self.kt
     }
 
     /// Contact damping ht(v) = 2 zeta sqrt(m kt) exp(-(v/ve)^2), ve = vs (eq. 6).
     pub fn ht(&self, v: f64) -> f64 {
-        self.h0 * (-(v / self.vs).powi(2)).exp()
+        self.h0 * self.stribeck(v)
     }
 
-    /// Slip rate |v|/g(v) (1/s) of eq. 3.
+    /// Slip rate |v|/g(v) (1/s) of eq. 3, written with one division: it runs in every
+    /// right-hand side of scene T.
     pub fn slip_rate(&self, v: f64) -> f64 {
-        v.abs() / self.g(v)
+        v.abs() * self.kt / (self.fc + (self.fs - self.fc) * self.stribeck(v))
     }
 
     /// Slip rate of the bristle for the radial rates v1 (body) and v2 (support).
@@ -127,7 +140,8 @@ impl LuGre2d {
 pub fn direction(z: Vector2<f64>, w: Vector2<f64>) -> Vector2<f64> {
     let s = z.norm();
     if s > 0.0 {
-        z / s
+        // One division, two products: this runs in every right-hand side of scene T.
+        z * (1.0 / s)
     } else {
         let speed = w.norm();
         if speed > 0.0 {

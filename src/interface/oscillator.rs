@@ -72,10 +72,20 @@ pub const FORCE_SOURCE: EnumType = EnumType {
 
 pub const SOLVER: EnumType = EnumType {
     name: "OscillatorSolver",
-    items: &[(
-        "radau5",
-        "Adaptive 3-stage Radau IIA (order 5, L-stable) for the regularised laws; the exact laws are solved in closed form whatever this says",
-    )],
+    items: &[
+        (
+            "radau5",
+            "Adaptive 3-stage Radau IIA (order 5, L-stable) for the regularised laws; the exact laws are solved in closed form whatever this says",
+        ),
+        (
+            "dopri5",
+            "Adaptive Dormand-Prince 5(4), steps ending where |u'| crosses D (and D + Da, D + 2 Da with stiction), the kinks of H",
+        ),
+        (
+            "rk4",
+            "Classical Runge-Kutta, steps_per_period fixed steps per forcing period",
+        ),
+    ],
 };
 
 const VARIABLES: &[Variable] = &[

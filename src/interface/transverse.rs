@@ -66,6 +66,10 @@ pub const SOLVER: EnumType = EnumType {
             "two_phase",
             "The paper's scheme (eq. 11-29): body step, then support step, steps_per_period steps per vibration period; first order; slip_law is split by construction",
         ),
+        (
+            "radau5",
+            "Adaptive 3-stage Radau IIA (order 5, L-stable) to `tolerance`, for stiff contacts (large kt); steps end at the same kinks as dopri5",
+        ),
     ],
 };
 
@@ -131,7 +135,7 @@ const VARIABLES: &[Variable] = &[
     real_parameter(
         "tolerance",
         vr::TOLERANCE,
-        "Relative tolerance of dopri5",
+        "Relative tolerance of dopri5 and radau5",
         1e-10,
         "",
         1e-14,

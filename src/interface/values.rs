@@ -84,6 +84,9 @@ impl ValueSet {
 /// Whether `value` may be stored in `var`: finite, within the table's range, a known item.
 /// The error says what was expected, for the FMI logger.
 pub fn check_value(table: &ModelTable, var: &Variable, value: f64) -> Result<(), String> {
+    if !matches!(var.kind, Kind::Real { .. }) && (!value.is_finite() || value.fract() != 0.0) {
+        return Err(format!("{} = {value}: expected a whole number", var.name));
+    }
     match var.kind {
         Kind::Real { min, max, unit, .. } => {
             if !value.is_finite() {

@@ -83,10 +83,17 @@ mod tests {
     fn every_model_has_a_documentation_page() {
         for model in crate::scenes::MODELS {
             let id = model.table.model_identifier;
-            assert!(equations(id).contains("<h2>Source</h2>"), "{id} has no description");
+            assert!(
+                equations(id).contains("<h2>Source</h2>"),
+                "{id} has no description"
+            );
             let html = page(model.table);
             for v in model.table.variables {
-                assert!(html.contains(&format!("<code>{}</code>", v.name)), "{id}: {}", v.name);
+                assert!(
+                    html.contains(&format!("<code>{}</code>", v.name)),
+                    "{id}: {}",
+                    v.name
+                );
             }
         }
     }

@@ -38,19 +38,23 @@ pub struct Setting {
     pub knob: Knob,
 }
 
+/// Runs one setting: the quantity and the work it took.
+pub type Runner = Box<dyn Fn(&Setting) -> Result<(f64, Work), String>>;
+
 /// One scene's work-precision study.
 pub struct Case {
     /// File stem under the output directory (`longitudinal` writes longitudinal.md/.svg).
     pub stem: &'static str,
-    /// What is run, in a sentence (title of the table and the plot).
+    /// What is run, in a sentence (title of the table).
     pub title: String,
+    /// A title short enough for the plot (SVG cannot wrap text).
+    pub short_title: &'static str,
     /// The quantity whose error is measured.
     pub quantity: &'static str,
     pub settings: Vec<Setting>,
     /// The reference and a neighbour of it (for the reference's own error).
     pub reference: (Setting, Setting),
-    /// Runs one setting: the quantity and the work it took.
-    pub run: Box<dyn Fn(&Setting) -> Result<(f64, Work), String>>,
+    pub run: Runner,
 }
 
 pub struct Row {
@@ -175,11 +179,21 @@ pub fn markdown(case: &Case, study: &Study) -> String {
         s,
         "\nTime: the fastest of repeated single-threaded runs (wall clock of one core, the process otherwise idle)."
     );
+    if study
+        .rows
+        .iter()
+        .any(|r| r.error.is_some() && r.work.rhs_evaluations == 0)
+    {
+        let _ = writeln!(
+            s,
+            "0 RHS evaluations: the scheme's step is algebraic (no right-hand side); the steps column counts its work."
+        );
+    }
     s
 }
 
 pub fn plot(case: &Case, study: &Study) -> Plot {
-    let mut plot = Plot::new(&case.title, "run time (s)", "relative error").log_log();
+    let mut plot = Plot::new(case.short_title, "run time (s)", "relative error").log_log();
     let mut solvers: Vec<&str> = Vec::new();
     for r in &study.rows {
         if !solvers.contains(&r.setting.solver) {
@@ -207,7 +221,8 @@ pub fn write_all(cases: &[Case], out: &Path) -> Result<Vec<PathBuf>, String> {
     for case in cases {
         let study = study(case, &mut progress)?;
         let md = out.join(format!("{}.md", case.stem));
-        std::fs::write(&md, markdown(case, &study)).map_err(|e| format!("{}: {e}", md.display()))?;
+        std::fs::write(&md, markdown(case, &study))
+            .map_err(|e| format!("{}: {e}", md.display()))?;
         let svg = out.join(format!("{}.svg", case.stem));
         plot(case, &study)
             .write(&svg)

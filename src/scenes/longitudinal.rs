@@ -51,6 +51,14 @@ pub struct Longitudinal {
     pub work: Work,
 }
 
+/// vr(t) for a velocity source, frequency f and held input.
+fn velocity_at(source: Velocity, f: f64, held: f64, t: f64) -> f64 {
+    match source {
+        Velocity::Prescribed { vc, va } => vc + va * (TAU * (t * f).fract()).cos(),
+        Velocity::Input => held,
+    }
+}
+
 pub fn build(values: &ValueSet, start_time: f64) -> Result<Box<dyn Scene>, String> {
     Ok(Box::new(Longitudinal::new(values, start_time)?))
 }
@@ -116,10 +124,7 @@ impl Longitudinal {
 
     /// The sliding velocity at time t.
     pub fn velocity_at(&self, t: f64) -> f64 {
-        match self.velocity {
-            Velocity::Prescribed { vc, va } => vc + va * (TAU * (t * self.f).fract()).cos(),
-            Velocity::Input => self.v_held,
-        }
+        velocity_at(self.velocity, self.f, self.v_held, t)
     }
 
     pub fn friction_force(&self) -> f64 {
@@ -147,7 +152,10 @@ impl Longitudinal {
         if let Velocity::Prescribed { vc, va } = self.velocity {
             let n = f64::from(self.steps_per_period);
             let phase = t * self.f;
-            if self.solver.fixed_step() {
+            // Coulomb is always integrated in closed form on the grid: its sign at each sub-step's
+            // midpoint must be the sign over the sub-step, which a whole period would not give
+            // where vr only touches zero (vc = va).
+            if self.solver.fixed_step() || self.law == Law::Coulomb {
                 // The grid point after t; phase*n can round just below an integer we reached.
                 let mut j = (phase * n).floor() + 1.0;
                 if j / (n * self.f) <= t {
@@ -182,7 +190,8 @@ impl Longitudinal {
 
     fn substep(&mut self, t0: f64, t1: f64) -> Result<(), String> {
         if !matches!(self.solver, Solver::Exponential) && self.law != Law::Coulomb {
-            let velocity = |t: f64| self.velocity_at(t);
+            let (source, f, held) = (self.velocity, self.f, self.v_held);
+            let velocity = move |t: f64| velocity_at(source, f, held, t);
             let integral =
                 self.solver
                     .advance(&self.law, &velocity, t0, t1, &mut self.z, &mut self.work)?;
@@ -289,7 +298,7 @@ pub fn steady_mean_force(values: &ValueSet, periods: u32) -> Result<f64, String>
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::interface::longitudinal::{LAW, TABLE};
+    use crate::interface::longitudinal::{LAW, SOLVER, TABLE};
 
     fn values(law: &str, vc: f64) -> ValueSet {
         let mut values = ValueSet::start(&TABLE);
@@ -318,7 +327,8 @@ mod tests {
     /// Oracle: the closed form FC (2/pi) asin(vc/va) (fraction of the period with vr < 0).
     #[test]
     fn coulomb_matches_closed_form() {
-        for vc in [0.230, 0.146, -0.095, 0.4] {
+        // 0.264 = va: vr touches zero once a period without changing sign.
+        for vc in [0.230, 0.146, -0.095, 0.4, 0.264] {
             let values = values("coulomb", vc);
             let mean = steady_mean_force(&values, 3).unwrap();
             let fc = 0.1 * 0.02 * 9.81;
@@ -335,6 +345,10 @@ mod tests {
     fn dahl_mean_converges_with_second_order() {
         let mean_at = |n: f64| {
             let mut values = values("dahl", 0.146);
+            values.set(
+                vr::SOLVER,
+                f64::from(SOLVER.value_of("exponential").unwrap()),
+            );
             values.set(vr::STEPS_PER_PERIOD, n);
             steady_mean_force(&values, 12).unwrap()
         };
@@ -343,5 +357,46 @@ mod tests {
         let e2 = (mean_at(400.0) - reference).abs();
         let ratio = e1 / e2;
         assert!((3.5..4.5).contains(&ratio), "error ratio {ratio}");
+    }
+
+    fn with_solver(solver: &str, knob: f64) -> ValueSet {
+        let mut values = values("dahl", 0.146);
+        values.set(vr::SOLVER, f64::from(SOLVER.value_of(solver).unwrap()));
+        if knob >= 1.0 {
+            values.set(vr::STEPS_PER_PERIOD, knob);
+        } else {
+            values.set(vr::TOLERANCE, knob);
+        }
+        values
+    }
+
+    /// Oracle: the exponential scheme at 64000 steps a period (second order, so within about
+    /// 1e-9 of the limit). rk4 must show fourth order: halving its step cuts the error by ~16.
+    #[test]
+    fn rk4_converges_with_fourth_order() {
+        let reference = steady_mean_force(&with_solver("exponential", 64_000.0), 12).unwrap();
+        let error = |n: f64| {
+            (steady_mean_force(&with_solver("rk4", n), 12).unwrap() / reference - 1.0).abs()
+        };
+        let ratio = error(50.0) / error(100.0);
+        assert!((13.0..19.0).contains(&ratio), "error ratio {ratio}");
+    }
+
+    /// Oracle: the exponential scheme at 64000 steps a period; the adaptive solvers meet it to
+    /// about their tolerance, and their error falls as the tolerance does.
+    #[test]
+    fn adaptive_solvers_meet_the_fine_exponential_reference() {
+        let reference = steady_mean_force(&with_solver("exponential", 64_000.0), 12).unwrap();
+        for solver in ["dopri5", "radau5"] {
+            let error = |tol: f64| {
+                (steady_mean_force(&with_solver(solver, tol), 12).unwrap() / reference - 1.0).abs()
+            };
+            let (loose, tight) = (error(1e-5), error(1e-8));
+            assert!(tight < 1e-7, "{solver}: error {tight} at 1e-8");
+            assert!(
+                tight < loose / 10.0,
+                "{solver}: {loose} at 1e-5, {tight} at 1e-8"
+            );
+        }
     }
 }

@@ -13,14 +13,15 @@
 //! extremes inside a sub-step on the cubic Hermite interpolant of (u, u') at its ends.
 
 pub mod exact;
+mod solver;
 
 use super::{require_positive, Scene};
 use crate::friction::regularized::{stiction_excess, Regularized};
 use crate::interface::oscillator::vr;
 use crate::interface::values::ValueSet;
-use crate::solve::radau::Radau5;
-use crate::solve::{Integrator, Ode, Work};
+use crate::solve::{Ode, Work};
 use exact::{Event, Mode, State, Switch};
+use solver::Solver;
 use std::f64::consts::TAU;
 
 /// The regularised equations of motion, `y = (u, u')`.
@@ -67,7 +68,7 @@ impl Ode for Equations {
 #[derive(Clone, Debug, PartialEq)]
 enum Core {
     Exact(Box<Switch>),
-    Regularized(Equations, Radau5),
+    Regularized(Equations, Solver),
 }
 
 /// max |u| over the last complete period; periods counted from the start with an integer index,
@@ -210,7 +211,8 @@ impl Oscillator {
                     held,
                     law,
                 };
-                Core::Regularized(equations, Radau5::new(rtol, atol, period / steps))
+                let name = values.item(vr::SOLVER);
+                Core::Regularized(equations, Solver::new(name, rtol, atol, period / steps))
             }
         };
         let mode = match &core {
@@ -346,12 +348,12 @@ impl Oscillator {
 /// extreme, so an error dv in u' there moves u by only about dv^2/(2|u''|).
 fn turning_point(
     equations: &Equations,
-    solver: Radau5,
+    solver: Solver,
     (t0, y0): (f64, [f64; 2]),
     (t1, y1): (f64, [f64; 2]),
     work: &mut Work,
 ) -> Result<f64, String> {
-    let atol = solver.atol;
+    let atol = solver.atol();
     let (mut lo, mut y_lo, mut solver_lo) = (t0, y0, solver);
     let (mut hi, mut v_hi) = (t1, y1[1]);
     let mut v_lo = y0[1];
@@ -417,7 +419,7 @@ impl Scene for Oscillator {
 
     fn save(&self) -> Vec<f64> {
         let step_hint = match &self.core {
-            Core::Regularized(_, solver) => solver.h_next,
+            Core::Regularized(_, solver) => solver.step_hint(),
             Core::Exact(_) => 0.0,
         };
         vec![
@@ -448,7 +450,7 @@ impl Scene for Oscillator {
                 self.amplitude.running = state[6];
                 self.amplitude.last = state[7];
                 if let Core::Regularized(_, solver) = &mut self.core {
-                    solver.h_next = state[8];
+                    solver.set_step_hint(state[8]);
                 }
                 Ok(())
             }

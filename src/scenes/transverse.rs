@@ -16,6 +16,7 @@ use crate::friction::lugre2d::{Contact, LuGre2d, SlipLaw};
 use crate::interface::transverse::vr;
 use crate::interface::values::ValueSet;
 use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
+use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
 use crate::solve::{Integrator, Ode, Work, MAX_DIM};
 use nalgebra::Vector2;
@@ -139,6 +140,7 @@ impl Switching for Equations<'_> {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Solver {
     Dopri5(Dopri5),
+    Radau5(Radau5),
     Rk4 { steps_per_period: u32 },
     TwoPhase(two_phase::TwoPhase),
 }
@@ -290,21 +292,27 @@ impl Transverse {
                 steps_per_period: steps,
             },
             "two_phase" => Solver::TwoPhase(two_phase::TwoPhase::new(&p, start_time, &y, steps)),
-            _ => {
+            name => {
                 // Absolute tolerances on the scale of each state: the deflection FC/kt, the
                 // velocities in play, a period's worth of the force integral.
                 let z0 = fc / kt;
                 let speed = vd_start.abs() + va + vs;
-                let mut atol = [0.0; MAX_DIM];
-                atol[X] = rtol * z0;
-                atol[VX] = rtol * speed;
-                atol[Y] = rtol * z0;
-                atol[VY] = rtol * speed;
-                atol[ZX] = rtol * z0;
-                atol[ZY] = rtol * z0;
-                atol[LAMBDA] = rtol * if kd > 0.0 { fc / kd } else { z0 };
-                atol[Q] = rtol * fc / f;
-                Solver::Dopri5(Dopri5::new(rtol, atol, 0.05 / f))
+                let mut scale = [0.0; MAX_DIM];
+                scale[X] = z0;
+                scale[VX] = speed;
+                scale[Y] = z0;
+                scale[VY] = speed;
+                scale[ZX] = z0;
+                scale[ZY] = z0;
+                scale[LAMBDA] = if kd > 0.0 { fc / kd } else { z0 };
+                scale[Q] = fc / f;
+                if name == "radau5" {
+                    let mut radau = Radau5::new(rtol, rtol, 0.05 / f);
+                    radau.atol_scale = scale;
+                    Solver::Radau5(radau)
+                } else {
+                    Solver::Dopri5(Dopri5::new(rtol, scale.map(|s| rtol * s), 0.05 / f))
+                }
             }
         };
 
@@ -363,6 +371,7 @@ impl Transverse {
         let eq = Equations { p: &self.p, vd };
         match &mut self.solver {
             Solver::Dopri5(d) => d.integrate_switched(&eq, t0, t1, &mut self.y, &mut self.work)?,
+            Solver::Radau5(r) => r.integrate_switched(&eq, t0, t1, &mut self.y, &mut self.work)?,
             Solver::Rk4 { steps_per_period } => {
                 let mut rk = Rk4 {
                     h_max: 1.0 / (self.p.f * f64::from(*steps_per_period)),
@@ -446,6 +455,7 @@ impl Scene for Transverse {
         state.extend(self.mean.save());
         match &self.solver {
             Solver::Dopri5(d) => state.push(d.h),
+            Solver::Radau5(r) => state.push(r.h_next),
             Solver::Rk4 { .. } => state.push(0.0),
             Solver::TwoPhase(tp) => state.extend(tp.save()),
         }
@@ -471,6 +481,7 @@ impl Scene for Transverse {
         self.mean.restore(&state[2 + MAX_DIM..base]);
         match &mut self.solver {
             Solver::Dopri5(d) => d.h = state[base],
+            Solver::Radau5(r) => r.h_next = state[base],
             Solver::Rk4 { .. } => {}
             Solver::TwoPhase(tp) => tp.restore(&state[base..]),
         }

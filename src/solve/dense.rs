@@ -40,16 +40,22 @@ pub fn lu_solve<const N: usize>(lu: &[[f64; N]; N], n: usize, pivots: &[usize; N
     for k in 0..n {
         b.swap(k, pivots[k]);
     }
-    for k in 0..n {
-        for i in k + 1..n {
-            b[i] -= lu[i][k] * b[k];
+    // Row by row (the same operations in the same order as column by column) so each b[i] is
+    // accumulated in a register and L is read along its rows.
+    for i in 1..n {
+        let mut acc = b[i];
+        for k in 0..i {
+            acc -= lu[i][k] * b[k];
         }
+        b[i] = acc;
     }
     for k in (0..n).rev() {
+        // Accumulated in a local: through b[k] every subtraction would wait on a store.
+        let mut acc = b[k];
         for j in k + 1..n {
-            b[k] -= lu[k][j] * b[j];
+            acc -= lu[k][j] * b[j];
         }
-        b[k] /= lu[k][k];
+        b[k] = acc / lu[k][k];
     }
 }
 

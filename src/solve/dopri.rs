@@ -281,19 +281,9 @@ impl Dopri5 {
                 h = t1 - t;
             }
             let mut tr = self.trial(ode, t, y, &k1, h, work);
-            if tr.err > 1.0 {
-                work.rejected += 1;
-                let fac = (0.9 * tr.err.powf(-0.2)).clamp(0.1, 0.9);
-                self.h = h * fac;
-                if self.h < h_tiny {
-                    return Err(format!(
-                        "dopri5: the step fell to {} s at t = {t}; the solution is not smooth enough for rtol {}",
-                        self.h, self.rtol
-                    ));
-                }
-                continue;
-            }
-            // Does a switching function change sign inside the step?
+            // Look for a sign change before the error test: a step across a kink fails that test
+            // by a wide margin, and halving towards the kink blindly costs several rejections,
+            // while the trial's dense output already says where the kink is.
             ode.switches(t + h, &tr.y_new[..n], &mut sw_new);
             let mut theta_min = 1.0;
             for i in 0..count {
@@ -318,9 +308,27 @@ impl Dopri5 {
                     full = false;
                 } else {
                     work.rejected += 1;
-                    self.h = h_kink * 0.5;
+                    let fac = (0.9 * retry.err.powf(-0.2)).clamp(0.1, 0.9);
+                    self.h = h_kink * fac;
+                    if self.h < h_tiny {
+                        return Err(format!(
+                            "dopri5: the step fell to {} s at t = {t}; the solution is not smooth enough for rtol {}",
+                            self.h, self.rtol
+                        ));
+                    }
                     continue;
                 }
+            } else if tr.err > 1.0 {
+                work.rejected += 1;
+                let fac = (0.9 * tr.err.powf(-0.2)).clamp(0.1, 0.9);
+                self.h = h * fac;
+                if self.h < h_tiny {
+                    return Err(format!(
+                        "dopri5: the step fell to {} s at t = {t}; the solution is not smooth enough for rtol {}",
+                        self.h, self.rtol
+                    ));
+                }
+                continue;
             }
             work.steps += 1;
             t = if last && full { t1 } else { t + h_taken };

@@ -15,6 +15,7 @@
 //! the extra filtered re-evaluation after a rejection.
 
 use super::dense::{lu_factor, lu_solve};
+use super::dopri::{Switching, MAX_SWITCHES};
 use super::{Integrator, Ode, Work, MAX_DIM};
 
 const STAGES: usize = 3;
@@ -27,6 +28,9 @@ const NEWTON_TOL: f64 = 1e-2;
 pub struct Radau5 {
     pub rtol: f64,
     pub atol: f64,
+    /// Per-component multipliers of `atol`, for states on very different scales (all 1 from
+    /// [`Radau5::new`]).
+    pub atol_scale: [f64; MAX_DIM],
     /// The longest step.
     pub h_max: f64,
     /// Steps of exactly `h_max` (the last one shortened) without error control: for order
@@ -44,11 +48,23 @@ impl Radau5 {
         Radau5 {
             rtol,
             atol,
+            atol_scale: [1.0; MAX_DIM],
             h_max,
             fixed_step: false,
             h_next: 0.0,
             max_steps: 1_000_000,
         }
+    }
+}
+
+impl Radau5 {
+    /// The absolute tolerance of each component.
+    fn atols(&self) -> [f64; MAX_DIM] {
+        let mut a = self.atol_scale;
+        for x in a.iter_mut() {
+            *x *= self.atol;
+        }
+        a
     }
 }
 
@@ -104,7 +120,7 @@ fn jacobian(
     ode: &dyn Ode,
     n: usize,
     (t, y, fy): (f64, &[f64], &[f64]),
-    atol: f64,
+    atol: &[f64; MAX_DIM],
     jac: &mut Jacobian,
     work: &mut Work,
 ) {
@@ -112,7 +128,7 @@ fn jacobian(
     let mut fp = [0.0; MAX_DIM];
     yp[..n].copy_from_slice(&y[..n]);
     for j in 0..n {
-        let nominal = (f64::EPSILON * y[j].abs().max(atol).max(1e-12)).sqrt();
+        let nominal = (f64::EPSILON * y[j].abs().max(atol[j]).max(1e-12)).sqrt();
         yp[j] = y[j] + nominal;
         // The increment actually represented, so round-off cannot bias the quotient.
         let delta = yp[j] - y[j];
@@ -135,6 +151,100 @@ fn scaled_norm(x: &[f64], scale: &[f64]) -> f64 {
 }
 
 impl Radau5 {
+    /// Solves the collocation equations by simplified Newton: one Jacobian `j0` at the start of
+    /// the step for every stage and iteration, one LU per step, three right-hand sides per
+    /// iteration. Much cheaper than [`Radau5::solve_stages`] where the Jacobian varies slowly;
+    /// false if the iteration does not contract (the caller then tries full Newton).
+    // Index loops mirror the collocation formulas.
+    #[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
+    fn solve_stages_simplified(
+        &self,
+        tab: &Tableau,
+        ode: &dyn Ode,
+        n: usize,
+        (t, y, h): (f64, &[f64], f64),
+        (f0, j0): (&[f64], &Jacobian),
+        z: &mut [f64; N3],
+        work: &mut Work,
+    ) -> bool {
+        let m = STAGES * n;
+        // Start on the Euler line z_s = c_s h f(t, y): closer than 0 wherever y moves smoothly.
+        for s in 0..STAGES {
+            for i in 0..n {
+                z[s * n + i] = tab.c[s] * h * f0[i];
+            }
+        }
+        let mut scale = [0.0; MAX_DIM];
+        for i in 0..n {
+            scale[i] = self.atol * self.atol_scale[i] + self.rtol * y[i].abs();
+        }
+        let mut matrix = [[0.0; N3]; N3];
+        for si in 0..STAGES {
+            for i in 0..n {
+                for sj in 0..STAGES {
+                    for j in 0..n {
+                        let identity = if si == sj && i == j { 1.0 } else { 0.0 };
+                        matrix[si * n + i][sj * n + j] = identity - h * tab.a[si][sj] * j0[i][j];
+                    }
+                }
+            }
+        }
+        let mut pivots = [0; N3];
+        if !lu_factor(&mut matrix, m, &mut pivots) {
+            return false;
+        }
+        let tol = NEWTON_TOL.max(100.0 * f64::EPSILON / self.rtol);
+        let mut previous = f64::INFINITY;
+        for iteration in 0..MAX_NEWTON {
+            let mut f = [[0.0; MAX_DIM]; STAGES];
+            for s in 0..STAGES {
+                let mut ys = [0.0; MAX_DIM];
+                for i in 0..n {
+                    ys[i] = y[i] + z[s * n + i];
+                }
+                eval(ode, t + tab.c[s] * h, &ys[..n], &mut f[s][..n], work);
+            }
+            let mut residual = [0.0; N3];
+            for si in 0..STAGES {
+                for i in 0..n {
+                    let row = si * n + i;
+                    let hf: f64 = (0..STAGES).map(|sj| tab.a[si][sj] * f[sj][i]).sum();
+                    residual[row] = -(z[row] - h * hf);
+                }
+            }
+            lu_solve(&matrix, m, &pivots, &mut residual[..m]);
+            for (zi, dz) in z[..m].iter_mut().zip(&residual[..m]) {
+                *zi += dz;
+            }
+            let norm = scaled_norm(&residual[..m], &scale[..n]);
+            if !norm.is_finite() {
+                return false;
+            }
+            if iteration == 0 {
+                if norm <= tol {
+                    return true;
+                }
+            } else {
+                // Hairer & Wanner (IV.8): with contraction theta the remaining error is about
+                // theta/(1 - theta) times the last update; give up when theta is near 1 or the
+                // iterations left cannot reach the tolerance.
+                let theta = norm / previous;
+                if theta >= 0.9 {
+                    return false;
+                }
+                if theta / (1.0 - theta) * norm <= tol {
+                    return true;
+                }
+                let left = (MAX_NEWTON - 1 - iteration) as i32;
+                if theta.powi(left) / (1.0 - theta) * norm > tol {
+                    return false;
+                }
+            }
+            previous = norm;
+        }
+        false
+    }
+
     /// Solves the collocation equations `z_i = h sum_j a_ij f(t + c_j h, y + z_j)` by full
     /// Newton; false if Newton does not converge (the caller shrinks the step).
     fn solve_stages(
@@ -150,7 +260,7 @@ impl Radau5 {
         z[..m].iter_mut().for_each(|x| *x = 0.0);
         let mut scale = [0.0; MAX_DIM];
         for i in 0..n {
-            scale[i] = self.atol + self.rtol * y[i].abs();
+            scale[i] = self.atol * self.atol_scale[i] + self.rtol * y[i].abs();
         }
         // Newton cannot resolve updates below round-off of the tolerance itself.
         let tol = NEWTON_TOL.max(100.0 * f64::EPSILON / self.rtol);
@@ -165,7 +275,7 @@ impl Radau5 {
                 }
                 let ts = t + tab.c[s] * h;
                 eval(ode, ts, &ys[..n], &mut f[s][..n], work);
-                jacobian(ode, n, (ts, &ys, &f[s]), self.atol, &mut jacs[s], work);
+                jacobian(ode, n, (ts, &ys, &f[s]), &self.atols(), &mut jacs[s], work);
             }
             let mut residual = [0.0; N3];
             let mut matrix = [[0.0; N3]; N3];
@@ -212,6 +322,103 @@ impl Integrator for Radau5 {
         y: &mut [f64],
         work: &mut Work,
     ) -> Result<(), String> {
+        self.run(ode, None, t0, t1, y, work)
+    }
+}
+
+/// The collocation polynomial of a step at `t + theta h`: through `y` at 0 and `y + z_s` at the
+/// nodes `c_s` (Radau IIA's continuous output, order 3 inside the step).
+fn collocation(tab: &Tableau, n: usize, y: &[f64], z: &[f64; N3], theta: f64) -> [f64; MAX_DIM] {
+    let nodes = [0.0, tab.c[0], tab.c[1], tab.c[2]];
+    let mut out = [0.0; MAX_DIM];
+    out[..n].copy_from_slice(&y[..n]);
+    for s in 0..STAGES {
+        let mut basis = 1.0;
+        for (k, node) in nodes.iter().enumerate() {
+            if k != s + 1 {
+                basis *= (theta - node) / (nodes[s + 1] - node);
+            }
+        }
+        for i in 0..n {
+            out[i] += basis * z[s * n + i];
+        }
+    }
+    out
+}
+
+/// The first zero of switching function `i` inside a step, as a fraction of the step (Illinois
+/// false position on the collocation polynomial).
+#[allow(clippy::too_many_arguments)]
+fn locate(
+    ode: &dyn Switching,
+    tab: &Tableau,
+    n: usize,
+    (t, y, h): (f64, &[f64], f64),
+    z: &[f64; N3],
+    i: usize,
+    s0: f64,
+    s1: f64,
+) -> f64 {
+    let (mut a, mut fa, mut b, mut fb) = (0.0, s0, 1.0, s1);
+    let mut side = 0;
+    let mut sw = [0.0; MAX_SWITCHES];
+    for _ in 0..60 {
+        if b - a <= 1e-12 {
+            break;
+        }
+        let mut m = (a * fb - b * fa) / (fb - fa);
+        if !(m > a && m < b) {
+            m = 0.5 * (a + b);
+        }
+        let state = collocation(tab, n, y, z, m);
+        ode.switches(t + m * h, &state[..n], &mut sw);
+        let fm = sw[i];
+        if fm == 0.0 {
+            return m;
+        }
+        if (fm > 0.0) == (fa > 0.0) {
+            a = m;
+            fa = fm;
+            if side == -1 {
+                fb *= 0.5;
+            }
+            side = -1;
+        } else {
+            b = m;
+            fb = fm;
+            if side == 1 {
+                fa *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    b
+}
+
+impl Radau5 {
+    /// Integrates `ode` from `t0` to `t1`, ending steps on the sign changes of its switching
+    /// functions (a kink inside a step costs the error estimate and Newton dearly; see
+    /// [`crate::solve::dopri`]).
+    pub fn integrate_switched(
+        &mut self,
+        ode: &dyn Switching,
+        t0: f64,
+        t1: f64,
+        y: &mut [f64],
+        work: &mut Work,
+    ) -> Result<(), String> {
+        self.run(ode, Some(ode), t0, t1, y, work)
+    }
+
+    fn run(
+        &mut self,
+        ode: &dyn Ode,
+        switching: Option<&dyn Switching>,
+        t0: f64,
+        t1: f64,
+        y: &mut [f64],
+        work: &mut Work,
+    ) -> Result<(), String> {
         let n = ode.dim();
         if n > MAX_DIM || y.len() < n {
             return Err(format!("Radau5: {n} states exceed the limit of {MAX_DIM}"));
@@ -228,6 +435,15 @@ impl Integrator for Radau5 {
         let mut t = t0;
         let mut f0 = [0.0; MAX_DIM];
         eval(ode, t, &y[..n], &mut f0[..n], work);
+        if span <= 16.0 * f64::EPSILON * t0.abs().max(t1.abs()) {
+            // An interval of a few ulps of t (a caller's sub-step boundaries met in round-off):
+            // Newton cannot resolve stage times there, and an Euler step is exact to round-off.
+            for i in 0..n {
+                y[i] += span * f0[i];
+            }
+            work.steps += 1;
+            return Ok(());
+        }
         let mut h = if self.fixed_step {
             h_max
         } else if self.h_next > 0.0 {
@@ -236,7 +452,7 @@ impl Integrator for Radau5 {
             // Hairer's rule of thumb: a step over which f changes y by about 1 % of its size.
             let mut scale = [0.0; MAX_DIM];
             for i in 0..n {
-                scale[i] = self.atol + self.rtol * y[i].abs();
+                scale[i] = self.atol * self.atol_scale[i] + self.rtol * y[i].abs();
             }
             let d0 = scaled_norm(&y[..n], &scale[..n]);
             let d1 = scaled_norm(&f0[..n], &scale[..n]);
@@ -251,6 +467,14 @@ impl Integrator for Radau5 {
         let mut last_rejected = false;
         let mut steps = 0u64;
         let mut z = [0.0; N3];
+        // The Jacobian at (t, y), computed once per accepted point and shared by simplified
+        // Newton and the error estimate of every attempt from there.
+        let mut j0 = [[0.0; MAX_DIM]; MAX_DIM];
+        let mut j0_at_t = false;
+        let mut sw_old = [0.0; MAX_SWITCHES];
+        let mut count = switching.map_or(0, |sw| sw.switches(t, &y[..n], &mut sw_old));
+        // Set while the step is being retaken to end on a kink: the step before it, to resume.
+        let mut resume: Option<f64> = None;
         while t < t1 {
             steps += 1;
             if steps > self.max_steps {
@@ -265,7 +489,22 @@ impl Integrator for Radau5 {
             if !clamped && h_try <= 16.0 * f64::EPSILON * t.abs().max(span) {
                 return Err(format!("Radau5: step size {h_try} too small at t = {t}"));
             }
-            if !self.solve_stages(&tab, ode, n, (t, y, h_try), &mut z, work) {
+            if !j0_at_t {
+                jacobian(ode, n, (t, y, &f0), &self.atols(), &mut j0, work);
+                j0_at_t = true;
+            }
+            let simplified = self.solve_stages_simplified(
+                &tab,
+                ode,
+                n,
+                (t, y, h_try),
+                (&f0[..n], &j0),
+                &mut z,
+                work,
+            );
+            let converged =
+                simplified || self.solve_stages(&tab, ode, n, (t, y, h_try), &mut z, work);
+            if !converged {
                 if self.fixed_step {
                     return Err(format!(
                         "Radau5: Newton did not converge at t = {t}, step {h_try}"
@@ -282,8 +521,6 @@ impl Integrator for Radau5 {
             }
             let mut fac = 1.0;
             if !self.fixed_step {
-                let mut j0 = [[0.0; MAX_DIM]; MAX_DIM];
-                jacobian(ode, n, (t, y, &f0), self.atol, &mut j0, work);
                 let mut filter = [[0.0; MAX_DIM]; MAX_DIM];
                 for i in 0..n {
                     for j in 0..n {
@@ -294,7 +531,8 @@ impl Integrator for Radau5 {
                 let mut pivots = [0; MAX_DIM];
                 let mut scale = [0.0; MAX_DIM];
                 for i in 0..n {
-                    scale[i] = self.atol + self.rtol * y[i].abs().max(y1[i].abs());
+                    scale[i] =
+                        self.atol * self.atol_scale[i] + self.rtol * y[i].abs().max(y1[i].abs());
                 }
                 let combination =
                     |i: usize| -> f64 { (0..STAGES).map(|s| tab.e[s] * z[s * n + i]).sum() };
@@ -333,13 +571,38 @@ impl Integrator for Radau5 {
                     continue;
                 }
             }
+            if let (Some(sw), None) = (switching, resume) {
+                let mut sw_new = [0.0; MAX_SWITCHES];
+                sw.switches(t + h_try, &y1[..n], &mut sw_new);
+                let mut theta_min: f64 = 1.0;
+                for i in 0..count {
+                    let crossed = sw_new[i] == 0.0 || (sw_new[i] > 0.0) != (sw_old[i] > 0.0);
+                    if sw_old[i] != 0.0 && crossed {
+                        let theta = locate(sw, &tab, n, (t, y, h_try), &z, i, sw_old[i], sw_new[i]);
+                        // A zero at the very start is the kink this step started on.
+                        if theta > 1e-6 {
+                            theta_min = theta_min.min(theta);
+                        }
+                    }
+                }
+                if theta_min < 0.999 {
+                    // Retake the step to end on the kink (from the same point: j0 still holds).
+                    resume = Some(h_try);
+                    h = theta_min * h_try;
+                    continue;
+                }
+            }
             y[..n].copy_from_slice(&y1[..n]);
             if y[..n].iter().any(|x| !x.is_finite()) {
                 return Err(format!("Radau5: the solution became non-finite at t = {t}"));
             }
+            if let Some(sw) = switching {
+                count = sw.switches(t + h_try, &y[..n], &mut sw_old);
+            }
             t = if clamped { t1 } else { t + h_try };
             work.steps += 1;
             eval(ode, t, &y[..n], &mut f0[..n], work);
+            j0_at_t = false;
             if !self.fixed_step {
                 let proposal = if last_rejected {
                     h_try * fac.min(1.0)
@@ -347,7 +610,12 @@ impl Integrator for Radau5 {
                     h_try * fac
                 };
                 h = if clamped { h.max(proposal) } else { proposal }.min(h_max);
+                // After a step cut short at a kink, go on with the step that was cut.
+                if let Some(before) = resume.take() {
+                    h = h.max(before).min(h_max);
+                }
             }
+            resume = None;
             first = false;
             last_rejected = false;
         }
@@ -442,5 +710,50 @@ mod tests {
             let err = (y[0] - 1.0 / 11.0).abs();
             assert!(err < 100.0 * rtol, "rtol {rtol}: error {err}");
         }
+    }
+
+    /// y' = |cos t| - y/10 (stiffness is not the point): a kink in y' wherever cos t = 0.
+    struct AbsCos;
+    impl Ode for AbsCos {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
+            dydt[0] = t.cos().abs() - 0.1 * y[0];
+        }
+    }
+    impl Switching for AbsCos {
+        fn switches(&self, t: f64, _y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
+            out[0] = t.cos();
+            1
+        }
+    }
+
+    /// Oracle: a run with a step bound far below the kinks' effect (h_max 1e-3, rtol 1e-13).
+    /// Ending steps on the kinks gives a result within the tolerance, and closer to the oracle
+    /// than stepping across the kinks at the same tolerance.
+    #[test]
+    fn steps_end_on_kinks() {
+        let mut fine = Radau5::new(1e-13, 1e-13, 1e-3);
+        let mut reference = [0.0];
+        fine.integrate(&AbsCos, 0.0, 10.0, &mut reference, &mut Work::default())
+            .unwrap();
+        let mut with = [0.0];
+        Radau5::new(1e-8, 1e-8, 10.0)
+            .integrate_switched(&AbsCos, 0.0, 10.0, &mut with, &mut Work::default())
+            .unwrap();
+        let mut without = [0.0];
+        Radau5::new(1e-8, 1e-8, 10.0)
+            .integrate(&AbsCos, 0.0, 10.0, &mut without, &mut Work::default())
+            .unwrap();
+        let (e_with, e_without) = (
+            (with[0] - reference[0]).abs(),
+            (without[0] - reference[0]).abs(),
+        );
+        assert!(e_with < 1e-8, "error {e_with} with the kinks located");
+        assert!(
+            e_with < e_without / 10.0,
+            "error {e_with} with the kinks located, {e_without} without"
+        );
     }
 }

@@ -287,3 +287,64 @@ fn bad_parameters_are_refused_with_the_expected_range() {
     let mut scene = Oscillator::new(&values("exact"), 0.0).unwrap();
     assert!(scene.step_logged(0.0, 0.0, None).is_err());
 }
+
+fn with_solver(law: &str, solver: &str) -> ValueSet {
+    let mut v = values(law);
+    v.set(
+        vr::SOLVER,
+        f64::from(
+            crate::interface::oscillator::SOLVER
+                .value_of(solver)
+                .unwrap(),
+        ),
+    );
+    v
+}
+
+/// Oracle: radau5 at rtol = atol = 1e-12. Kink-aware dopri5 and rk4 (1024 steps a period) must
+/// reach the same steady amplitude for every regularised law, including the stiction laws whose
+/// H has three kinks on each side; rk4 steps across the kinks, so it is held to less.
+#[test]
+fn explicit_solvers_match_a_tight_radau_reference() {
+    for law in [
+        "linear",
+        "trigonometric",
+        "linear_stiction",
+        "trigonometric_stiction",
+    ] {
+        let mut reference = with_solver(law, "radau5");
+        reference.set(vr::RTOL, 1e-12);
+        reference.set(vr::ATOL, 1e-12);
+        let exact = steady_amplitude(&reference, 20).unwrap();
+        let mut dopri = with_solver(law, "dopri5");
+        dopri.set(vr::RTOL, 1e-10);
+        dopri.set(vr::ATOL, 1e-10);
+        let mut rk4 = with_solver(law, "rk4");
+        rk4.set(vr::STEPS_PER_PERIOD, 1024.0);
+        for (name, v, tolerance) in [("dopri5", dopri, 1e-8), ("rk4", rk4, 1e-5)] {
+            let amplitude = steady_amplitude(&v, 20).unwrap();
+            assert!(
+                (amplitude / exact - 1.0).abs() < tolerance,
+                "{law} {name}: {amplitude} vs {exact}"
+            );
+        }
+    }
+}
+
+/// Oracle: the order of RK4 on the smooth trigonometric law with D wide enough that every step
+/// stays on one side of the kinks at |u'| = D only by chance: the error still falls by at least
+/// ~8 per halving of the step (the kinks cost at most one order).
+#[test]
+fn rk4_converges_on_the_paper_case() {
+    let mut reference = with_solver("trigonometric", "radau5");
+    reference.set(vr::RTOL, 1e-12);
+    reference.set(vr::ATOL, 1e-12);
+    let exact = steady_amplitude(&reference, 20).unwrap();
+    let error = |n: f64| {
+        let mut v = with_solver("trigonometric", "rk4");
+        v.set(vr::STEPS_PER_PERIOD, n);
+        (steady_amplitude(&v, 20).unwrap() / exact - 1.0).abs()
+    };
+    let ratio = error(200.0) / error(400.0);
+    assert!(ratio > 7.0, "error ratio {ratio}");
+}

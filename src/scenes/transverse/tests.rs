@@ -128,3 +128,54 @@ fn restore_continues_identically() {
     assert_eq!(a.forces(), b.forces());
     assert_eq!(a.mean_ffx(), b.mean_ffx());
 }
+
+fn issue_case(solver: &str, slip: &str, kt_factor: f64, tolerance: f64) -> ValueSet {
+    let mut v = values(solver, slip);
+    v.set(vr::INITIAL, f64::from(INITIAL.value_of("sliding").unwrap()));
+    v.set(vr::VD, 5e-4);
+    v.set(vr::VA, 2e-3);
+    v.set(vr::F, 3000.0);
+    v.set(vr::KT, v.real(vr::KT) * kt_factor);
+    v.set(vr::TOLERANCE, tolerance);
+    v
+}
+
+/// Oracle: kink-aware dopri5 at rtol 1e-11. radau5 (kink-aware too) meets it to about its
+/// tolerance on both slip laws, and more closely at a tighter tolerance.
+#[test]
+fn radau5_meets_a_tight_dopri5_reference() {
+    for slip in ["split", "total"] {
+        let reference = mean_after(&issue_case("dopri5", slip, 1.0, 1e-11), 15);
+        let error = |tol: f64| {
+            (mean_after(&issue_case("radau5", slip, 1.0, tol), 15) / reference - 1.0).abs()
+        };
+        let (loose, tight) = (error(1e-5), error(1e-8));
+        assert!(tight < 1e-6, "{slip}: {tight} at rtol 1e-8");
+        assert!(tight < loose, "{slip}: {loose} at 1e-5, {tight} at 1e-8");
+    }
+}
+
+/// Oracle: dopri5 at rtol 1e-9 on the stiff contact (kt x 1000, where its steps are bounded by
+/// stability, not accuracy). The L-stable radau5 reaches the same mean force to 1e-4 with far
+/// fewer right-hand-side evaluations.
+#[test]
+fn radau5_handles_the_stiff_contact() {
+    let run = |solver: &str, tol: f64| {
+        let v = issue_case(solver, "split", 1000.0, tol);
+        let mut scene = Transverse::new(&v, 0.0).unwrap();
+        for _ in 0..6 {
+            scene.do_step(1.0 / 3000.0, &v).unwrap();
+        }
+        (scene.mean_ffx(), scene.work.rhs_evaluations)
+    };
+    let (reference, explicit_work) = run("dopri5", 1e-9);
+    let (mean, implicit_work) = run("radau5", 1e-5);
+    assert!(
+        (mean / reference - 1.0).abs() < 1e-4,
+        "{mean} vs {reference}"
+    );
+    assert!(
+        implicit_work * 5 < explicit_work,
+        "{implicit_work} vs {explicit_work}"
+    );
+}

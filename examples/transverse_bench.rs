@@ -1,0 +1,95 @@
+//! In-process timing of scene T for benches/transverse.py: runs the scene (no FMI layer) for each
+//! solver setting given on the command line and prints one CSV line per run.
+//!
+//!   cargo run --release --example transverse_bench -- SLIP_LAW KT_FACTOR T_END COMM_STEP \
+//!       SOLVER:KNOB [SOLVER:KNOB ...]
+//!
+//! KNOB is a tolerance for dopri5/exponential and steps per period for rk4/two_phase. Output:
+//! `slip_law,kt_factor,solver,knob,FFx_mean,cpu_seconds,rhs_evaluations,steps,rejected`.
+//! The clock is the process CPU time as /proc/self/stat reports it (the run is single-threaded).
+
+use friction_fmu::interface::transverse::{vr, INITIAL, SLIP_LAW, SOLVER, TABLE};
+use friction_fmu::interface::values::ValueSet;
+use friction_fmu::scenes::transverse::Transverse;
+use friction_fmu::scenes::Scene;
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// utime + stime of this process in seconds (fields 14 and 15 of /proc/self/stat), or None off
+/// Linux, where the wall clock is used instead.
+fn cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // The command name (field 2) may contain spaces; fields after it are space-separated.
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let fields: Vec<&str> = rest.split(' ').collect();
+    let ticks: f64 = fields.get(11)?.parse::<f64>().ok()? + fields.get(12)?.parse::<f64>().ok()?;
+    // CLK_TCK is 100 on every Linux configuration we run on.
+    Some(ticks / 100.0)
+}
+
+fn run(args: &[String]) -> Result<(), String> {
+    if args.len() < 5 {
+        return Err(
+            "usage: transverse_bench SLIP_LAW KT_FACTOR T_END COMM_STEP SOLVER:KNOB...".into(),
+        );
+    }
+    let slip = args[0].as_str();
+    let parse = |s: &str| s.parse::<f64>().map_err(|e| format!("{s}: {e}"));
+    let (kt_factor, t_end, comm) = (parse(&args[1])?, parse(&args[2])?, parse(&args[3])?);
+    for spec in &args[4..] {
+        let (solver, knob) = spec
+            .split_once(':')
+            .ok_or(format!("{spec}: expected SOLVER:KNOB"))?;
+        let knob = parse(knob)?;
+        let mut v = ValueSet::start(&TABLE);
+        let item = |e: &friction_fmu::interface::variable::EnumType, name: &str| {
+            e.value_of(name)
+                .map(f64::from)
+                .ok_or(format!("no item {name}"))
+        };
+        v.set(vr::SLIP_LAW, item(&SLIP_LAW, slip)?);
+        v.set(vr::INITIAL, item(&INITIAL, "sliding")?);
+        v.set(vr::SOLVER, item(&SOLVER, solver)?);
+        v.set(vr::VD, 5e-4);
+        v.set(vr::VA, 2e-3);
+        v.set(vr::F, 3000.0);
+        v.set(vr::KT, v.real(vr::KT) * kt_factor);
+        if solver == "rk4" || solver == "two_phase" {
+            v.set(vr::STEPS_PER_PERIOD, knob);
+        } else {
+            v.set(vr::TOLERANCE, knob);
+        }
+        let mut scene = Transverse::new(&v, 0.0)?;
+        let steps = (t_end / comm).round() as u64;
+        let (cpu0, wall0) = (cpu_seconds(), Instant::now());
+        for i in 0..steps {
+            // The communication point from its index, as a master computes it.
+            let h = (i + 1) as f64 * comm - scene.time();
+            scene.do_step(h, &v)?;
+        }
+        let seconds = match (cpu0, cpu_seconds()) {
+            (Some(a), Some(b)) if b - a > 0.05 => b - a,
+            _ => wall0.elapsed().as_secs_f64(),
+        };
+        let w = scene.work;
+        println!(
+            "{slip},{kt_factor},{solver},{knob:e},{:.15e},{seconds:.6},{},{},{}",
+            scene.mean_ffx(),
+            w.rhs_evaluations,
+            w.steps,
+            w.rejected
+        );
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match run(&args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("transverse_bench: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,130 @@
+//! The solver menu of scene L. `exponential` is the scene's own scheme (in the parent module);
+//! the others integrate the bristle ODE `z' = rate(z, vr(t))` together with the force integral
+//! `q' = FT(z, vr(t))` as a second state, over sub-steps that never contain a sign change of vr.
+
+use super::Law;
+use crate::interface::longitudinal::vr;
+use crate::interface::values::ValueSet;
+use crate::solve::dopri::Dopri5;
+use crate::solve::radau::Radau5;
+use crate::solve::rk4::Rk4;
+use crate::solve::{Integrator, Ode, Work, MAX_DIM};
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Solver {
+    Exponential,
+    /// One RK4 step per sub-step of at most `h_max`.
+    Rk4 {
+        h_max: f64,
+    },
+    Dopri5(Dopri5),
+    Radau5(Radau5),
+}
+
+/// `(z, q)` with the velocity as a function of time.
+struct Bristle<'a> {
+    law: &'a Law,
+    velocity: &'a dyn Fn(f64) -> f64,
+}
+
+impl Ode for Bristle<'_> {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        let v = (self.velocity)(t);
+        let (rate, force) = match self.law {
+            // Coulomb has no state; the scene integrates its force in closed form instead.
+            Law::Coulomb => (0.0, 0.0),
+            Law::Dahl(d) => (d.rate(y[0], v), d.force(y[0])),
+            Law::LuGre(l) => (l.rate(y[0], v), l.force(y[0], v)),
+        };
+        dydt[0] = rate;
+        dydt[1] = force;
+    }
+}
+
+impl Solver {
+    pub fn new(
+        values: &ValueSet,
+        law: Law,
+        fc: f64,
+        f: f64,
+        steps_per_period: u32,
+    ) -> Result<Self, String> {
+        let name = values.item(vr::SOLVER);
+        if name == "exponential" {
+            return Ok(Solver::Exponential);
+        }
+        if name == "rk4" {
+            return Ok(Solver::Rk4 {
+                h_max: 1.0 / (f * f64::from(steps_per_period)),
+            });
+        }
+        let rtol = values.real(vr::TOLERANCE);
+        if !(1e-14..=1e-2).contains(&rtol) {
+            return Err(format!(
+                "tolerance = {rtol} is out of range: expected 1e-14 <= tolerance <= 0.01"
+            ));
+        }
+        // Absolute tolerances on the scale of each state: the deflection FC/kt at saturation and
+        // the force integral over a period, FC/f.
+        let kt = match law {
+            Law::Dahl(d) => d.kt,
+            Law::LuGre(l) => l.sigma0,
+            Law::Coulomb => 1.0,
+        };
+        let (z_scale, q_scale) = (fc / kt, fc / f);
+        Ok(if name == "radau5" {
+            Solver::Radau5(Radau5::new(rtol, rtol * z_scale.min(q_scale), 1.0 / f))
+        } else {
+            let mut atol = [rtol * z_scale; MAX_DIM];
+            atol[1] = rtol * q_scale;
+            Solver::Dopri5(Dopri5::new(rtol, atol, 1.0 / f))
+        })
+    }
+
+    /// Sub-steps on a grid of 1/n period (the adaptive solvers choose their own steps).
+    pub fn fixed_step(&self) -> bool {
+        matches!(self, Solver::Exponential | Solver::Rk4 { .. })
+    }
+
+    /// The step the adaptive solver would try next (part of the saved FMU state).
+    pub fn step_hint(&self) -> f64 {
+        match self {
+            Solver::Dopri5(d) => d.h,
+            Solver::Radau5(r) => r.h_next,
+            _ => 0.0,
+        }
+    }
+
+    pub fn set_step_hint(&mut self, h: f64) {
+        match self {
+            Solver::Dopri5(d) => d.h = h,
+            Solver::Radau5(r) => r.h_next = h,
+            _ => {}
+        }
+    }
+
+    /// Advances `z` over `[t0, t1]` (no sign change of vr inside); returns the force integral.
+    pub fn advance(
+        &mut self,
+        law: &Law,
+        velocity: &dyn Fn(f64) -> f64,
+        t0: f64,
+        t1: f64,
+        z: &mut f64,
+        work: &mut Work,
+    ) -> Result<f64, String> {
+        let ode = Bristle { law, velocity };
+        let mut y = [*z, 0.0];
+        match self {
+            Solver::Exponential => return Err("exponential is not an ODE solver".into()),
+            Solver::Rk4 { h_max } => Rk4 { h_max: *h_max }.integrate(&ode, t0, t1, &mut y, work)?,
+            Solver::Dopri5(d) => d.integrate(&ode, t0, t1, &mut y, work)?,
+            Solver::Radau5(r) => r.integrate(&ode, t0, t1, &mut y, work)?,
+        }
+        *z = y[0];
+        Ok(y[1])
+    }
+}

@@ -1,0 +1,430 @@
+"""The FMI 2.0 contract under bad input, for every model, through fmpy's low-level FMU2Slave:
+every call in every state where the co-simulation state machine forbids it, unknown value
+references, bad parameter values, wrong communication points and steps, FMU states of another
+instance, truncated and corrupted serialized states, freeInstance twice or on NULL.
+
+Each must give an error status and a logged message saying what was wrong, and leave the
+process (and, for refused calls, the instance) as it was. Names, value references and ranges
+come from each FMU's own modelDescription.xml, so the tests follow the variable tables.
+
+Oracle for the legal states: FMI 2.0.4, section 4.2.4 (state machine of a co-simulation slave).
+"""
+import ctypes
+import math
+import struct
+from ctypes import byref, c_size_t, c_void_p
+
+import pytest
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi2 import fmi2FMUstate
+
+from conftest import Slave, unzipped
+
+MODELS = ["LongitudinalFriction", "TransverseFriction", "DryFrictionOscillator"]
+
+I, IM, SC, SF, T, E = (
+    "Instantiated",
+    "InitializationMode",
+    "StepComplete",
+    "StepFailed",
+    "Terminated",
+    "Error",
+)
+STATES = [I, IM, SC, SF, T, E]
+ALL = set(STATES)
+READABLE = {IM, SC, SF, T, E}
+WRITABLE = {I, IM, SC}
+STATUS = {SC, SF, T}
+
+# (function, states where the standard allows it). fmi2Terminate is also accepted in Error,
+# where the standard leaves it open; fmi2CancelStep needs StepPending, which never occurs here
+# (doStep is synchronous); the status queries need a step to ask about.
+LEGAL = {
+    "fmi2SetupExperiment": {I},
+    "fmi2EnterInitializationMode": {I},
+    "fmi2ExitInitializationMode": {IM},
+    "fmi2Terminate": {SC, SF, E},
+    "fmi2GetReal": READABLE,
+    "fmi2GetInteger": READABLE,
+    "fmi2GetBoolean": READABLE,
+    "fmi2GetString": READABLE,
+    "fmi2SetReal": WRITABLE,
+    "fmi2SetInteger": WRITABLE,
+    "fmi2SetBoolean": WRITABLE,
+    "fmi2SetString": WRITABLE,
+    "fmi2GetDirectionalDerivative": READABLE,
+    "fmi2SetRealInputDerivatives": WRITABLE,
+    "fmi2GetRealOutputDerivatives": {SC, SF, T, E},
+    "fmi2DoStep": {SC},
+    "fmi2CancelStep": set(),
+    "fmi2GetStatus": STATUS,
+    "fmi2GetRealStatus": STATUS,
+    "fmi2GetIntegerStatus": STATUS,
+    "fmi2GetBooleanStatus": STATUS,
+    "fmi2GetStringStatus": STATUS,
+    # fmi2SetDebugLogging, fmi2Reset, fmi2FreeInstance and the FMU-state functions are legal in
+    # every state, so they have no wrong state to test.
+}
+
+# Parameters that make the first default-sized step fail (fmi2Discard, state StepFailed): a
+# contact so stiff, or a force so large, that the adaptive solver's step falls below its minimum.
+STEP_FAILS_WITH = {
+    "LongitudinalFriction": {"law": "lugre", "sigma2": 1e300, "vc": 1e300},
+    "TransverseFriction": {"kt": 1e300},
+    "DryFrictionOscillator": {"P": 1e308},
+}
+
+PHASE_CODE = {state: code for code, state in enumerate(STATES)}
+
+
+def variables(model, causality=None, type_=None):
+    _, md = unzipped(model)
+    return [
+        v
+        for v in md.modelVariables
+        if (causality is None or v.causality == causality) and (type_ is None or v.type == type_)
+    ]
+
+
+def default_step(model):
+    return float(unzipped(model)[1].defaultExperiment.stepSize)
+
+
+def refused(slave, call, *fragments, status=3):
+    """`call` raises with `status` (Error unless said) and logs a message with every fragment."""
+    before = len(slave.messages)
+    with pytest.raises(FMICallException) as error:
+        call()
+    assert error.value.status == status, slave.last_message()
+    assert len(slave.messages) > before, "refused without a message"
+    message = slave.last_message()
+    for fragment in fragments:
+        assert fragment in message, f"{fragment!r} not in {message!r}"
+    return message
+
+
+def checksum(data):
+    """FNV-1a 64, the FMU's checksum of serialized states."""
+    h = 0xCBF29CE484222325
+    for b in data:
+        h = ((h ^ b) * 0x100000001B3) & 0xFFFFFFFFFFFFFFFF
+    return h
+
+
+def serialized_layout(data):
+    """Offset of the first number of a serialized state: magic (8), GUID length (4), GUID."""
+    (guid_length,) = struct.unpack_from("<I", data, 8)
+    return 12 + guid_length
+
+
+def forge(data, index, value):
+    """The serialized state with number `index` replaced and the checksum made to match, so that
+    only the FMU's checks of the content stand between it and the instance."""
+    data = bytearray(data)
+    struct.pack_into("<d", data, serialized_layout(data) + 8 * index, value)
+    struct.pack_into("<Q", data, len(data) - 8, checksum(data[:-8]))
+    return bytes(data)
+
+
+def in_state(model, state, name="instance"):
+    """A new instance driven into `state`."""
+    slave = Slave(model, name)
+    if state == I:
+        return slave
+    if state == IM:
+        slave.fmu.setupExperiment(startTime=0.0)
+        slave.fmu.enterInitializationMode()
+        return slave
+    if state == SF:
+        slave.initialize(**STEP_FAILS_WITH[model])
+        refused(slave, lambda: slave.fmu.doStep(0.0, default_step(model)), "fmi2DoStep", status=2)
+        return slave
+    slave.initialize()
+    slave.fmu.doStep(0.0, default_step(model))
+    if state == T:
+        slave.fmu.terminate()
+    elif state == E:
+        # Nothing a well-formed call does leads there on purpose (non-finite outputs, internal
+        # errors), so restore an FMU state whose recorded phase is Error.
+        state_ = slave.fmu.getFMUstate()
+        data = forge(slave.fmu.serializeFMUstate(state_), 0, PHASE_CODE[E])
+        slave.fmu.freeFMUstate(state_)
+        forged = slave.fmu.deSerializeFMUstate(data)
+        slave.fmu.setFMUstate(forged)
+        slave.fmu.freeFMUstate(forged)
+    return slave
+
+
+def calls(slave, model):
+    """One call of each function with a state-machine rule, with otherwise valid arguments."""
+    fmu = slave.fmu
+    real_parameter = variables(model, "parameter", "Real")[0].valueReference
+    integer_parameter = next(
+        v.valueReference for v in variables(model, "parameter") if v.type in ("Integer", "Enumeration")
+    )
+    output = variables(model, "output", "Real")[0].valueReference
+    real_input = variables(model, "input", "Real")[0].valueReference
+    return {
+        "fmi2SetupExperiment": lambda: fmu.setupExperiment(startTime=0.0),
+        "fmi2EnterInitializationMode": fmu.enterInitializationMode,
+        "fmi2ExitInitializationMode": fmu.exitInitializationMode,
+        "fmi2Terminate": fmu.terminate,
+        "fmi2GetReal": lambda: fmu.getReal([output]),
+        "fmi2GetInteger": lambda: fmu.getInteger([integer_parameter]),
+        "fmi2GetBoolean": lambda: fmu.getBoolean([output]),
+        "fmi2GetString": lambda: fmu.getString([output]),
+        "fmi2SetReal": lambda: fmu.setReal([real_input], [0.0]),
+        "fmi2SetInteger": lambda: fmu.setInteger([integer_parameter], [1]),
+        "fmi2SetBoolean": lambda: fmu.setBoolean([output], [True]),
+        "fmi2SetString": lambda: fmu.setString([output], ["x"]),
+        "fmi2GetDirectionalDerivative": lambda: fmu.getDirectionalDerivative([output], [real_parameter], [1.0]),
+        "fmi2SetRealInputDerivatives": lambda: fmu.setRealInputDerivatives([real_input], [1], [0.0]),
+        "fmi2GetRealOutputDerivatives": lambda: fmu.getRealOutputDerivatives([output], [1]),
+        "fmi2DoStep": lambda: fmu.doStep(0.0, default_step(model)),
+        "fmi2CancelStep": fmu.cancelStep,
+        "fmi2GetStatus": lambda: fmu.getStatus(0),
+        "fmi2GetRealStatus": lambda: fmu.getRealStatus(2),
+        "fmi2GetIntegerStatus": lambda: fmu.getIntegerStatus(0),
+        "fmi2GetBooleanStatus": lambda: fmu.getBooleanStatus(3),
+        "fmi2GetStringStatus": lambda: fmu.getStringStatus(1),
+    }
+
+
+@pytest.mark.parametrize("state", STATES)
+@pytest.mark.parametrize("model", MODELS)
+def test_every_call_in_a_wrong_state_is_refused_naming_function_and_state(model, state):
+    slave = in_state(model, state)
+    wrong = [f for f, legal in LEGAL.items() if state not in legal]
+    assert wrong, "the table has no wrong call for this state"
+    for function in wrong:
+        # A refused call leaves the state as it was: every message names the same state.
+        refused(slave, calls(slave, model)[function], function, f"not allowed in state {state}")
+    slave.free()
+
+
+def test_the_step_failed_recipes_really_fail_the_step():
+    """in_state(StepFailed) relies on these: the status the master asks for is Discard."""
+    for model in MODELS:
+        slave = in_state(model, SF)
+        assert slave.fmu.getStatus(0) == 2  # fmi2Discard: the last step did not complete
+        assert slave.fmu.getRealStatus(2) == 0.0  # fmi2LastSuccessfulTime
+        slave.free()
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_unknown_value_references_are_refused(model):
+    slave = in_state(model, SC)
+    unknown = max(v.valueReference for v in variables(model)) + 1
+    fmu = slave.fmu
+    for vr in (unknown, 2**32 - 1):
+        for name, call in [
+            ("fmi2GetReal", lambda: fmu.getReal([vr])),
+            ("fmi2GetInteger", lambda: fmu.getInteger([vr])),
+            ("fmi2GetBoolean", lambda: fmu.getBoolean([vr])),
+            ("fmi2SetReal", lambda: fmu.setReal([vr], [1.0])),
+            ("fmi2SetInteger", lambda: fmu.setInteger([vr], [1])),
+        ]:
+            refused(slave, call, name, f"unknown value reference {vr}", model)
+    # A known reference among them does not make the call half-succeed: all or nothing.
+    first_input = variables(model, "input", "Real")[0]
+    before = fmu.getReal([first_input.valueReference])
+    refused(slave, lambda: fmu.setReal([first_input.valueReference, unknown], [123.0, 1.0]), "unknown")
+    assert fmu.getReal([first_input.valueReference]) == before
+    slave.free()
+
+
+def bad_values(variable):
+    """Values a Real parameter must refuse, from its declared range (min/max in the XML)."""
+    values = [math.nan, math.inf, -math.inf]
+    low = None if variable.min is None else float(variable.min)
+    high = None if variable.max is None else float(variable.max)
+    if low is not None and math.isfinite(low):
+        values += [-1e300] if low > -1e300 else []
+        values += [low - max(abs(low), 1.0)]
+        if 0 < low < 1e-300:
+            values += [0.0, -0.0]  # "strictly positive"
+    if high is not None and math.isfinite(high):
+        values += [high + max(abs(high), 1.0), 1e300]
+    return values
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_bad_parameter_values_are_refused_with_name_and_expectation(model):
+    slave = Slave(model)
+    for variable in variables(model, "parameter"):
+        vr = variable.valueReference
+        if variable.type == "Real":
+            for value in bad_values(variable):
+                refused(slave, lambda: slave.fmu.setReal([vr], [value]), "fmi2SetReal", variable.name, "expected")
+        else:
+            items = len(variable.declaredType.items) if variable.type == "Enumeration" else None
+            low = 1 if items else int(variable.min)
+            high = items if items else int(variable.max)
+            outside = [v for v in {low - 1, high + 1, -(2**31), 2**31 - 1} if not low <= v <= high]
+            for value in outside:
+                refused(slave, lambda: slave.fmu.setInteger([vr], [value]), "fmi2SetInteger", variable.name, "expected")
+    # Nothing was stored: the instance initialises with its start values.
+    slave.initialize()
+    slave.fmu.doStep(0.0, default_step(model))
+    slave.free()
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_wrong_communication_point_or_step_is_refused_and_the_instance_goes_on(model):
+    slave = in_state(model, SC)
+    h = default_step(model)
+    fmu = slave.fmu
+    refused(slave, lambda: fmu.doStep(0.0, h), "fmi2DoStep", "expected currentCommunicationPoint = ")
+    refused(slave, lambda: fmu.doStep(h + 0.5, h), "fmi2DoStep", "but was")
+    refused(slave, lambda: fmu.doStep(math.nan, h), "fmi2DoStep", "but was NaN")
+    for step in (0.0, -0.0, -h, math.nan, math.inf, -math.inf):
+        refused(slave, lambda: fmu.doStep(h, step), "fmi2DoStep", "communicationStepSize", "expected a finite step > 0")
+    fmu.doStep(h, h)  # still usable
+    slave.free()
+
+
+def test_step_past_the_stop_time_is_refused():
+    for model in MODELS:
+        slave = Slave(model)
+        h = default_step(model)
+        slave.initialize(stop_time=h)
+        refused(slave, lambda: slave.fmu.doStep(0.0, 2 * h), "fmi2DoStep", "stopTime")
+        slave.fmu.doStep(0.0, h)
+        slave.free()
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_fmu_state_of_another_instance_is_refused(model):
+    a, b = in_state(model, SC, "a"), in_state(model, SC, "b")
+    state_a = a.fmu.getFMUstate()
+    not_ours = "not made by this instance"
+    refused(b, lambda: b.fmu.setFMUstate(state_a), "fmi2SetFMUstate", not_ours)
+    refused(b, lambda: b.fmu.freeFMUstate(state_a), "fmi2FreeFMUstate", not_ours)
+    refused(b, lambda: b.fmu.serializeFMUstate(state_a), "fmi2SerializedFMUstateSize", not_ours)
+    refused(
+        b,
+        lambda: b.fmu.fmi2SerializeFMUstate(b.fmu.component, state_a, ctypes.create_string_buffer(4096), 4096),
+        "fmi2SerializeFMUstate",
+        not_ours,
+    )
+    # fmi2GetFMUstate may overwrite a state, but only one of the same instance.
+    slot = fmi2FMUstate(state_a.value)
+    refused(b, lambda: b.fmu.fmi2GetFMUstate(b.fmu.component, byref(slot)), "fmi2GetFMUstate", "neither NULL nor a state of this instance")
+    # A's state survived all that, and once freed it is refused by A itself.
+    a.fmu.setFMUstate(state_a)
+    stale = fmi2FMUstate(state_a.value)
+    a.fmu.freeFMUstate(state_a)
+    refused(a, lambda: a.fmu.setFMUstate(stale), "fmi2SetFMUstate", "or was freed")
+    a.free()
+    b.free()
+
+
+def test_state_of_another_model_is_refused():
+    a, b = in_state(MODELS[0], SC, "a"), in_state(MODELS[1], SC, "b")
+    state = a.fmu.getFMUstate()
+    data = a.fmu.serializeFMUstate(state)
+    refused(b, lambda: b.fmu.setFMUstate(state), "fmi2SetFMUstate", "not made by this instance")
+    refused(b, lambda: b.fmu.deSerializeFMUstate(data), "fmi2DeSerializeFMUstate", "another model")
+    a.fmu.freeFMUstate(state)
+    a.free()
+    b.free()
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_truncated_or_corrupted_serialized_state_is_refused(model):
+    slave = in_state(model, SC)
+    state = slave.fmu.getFMUstate()
+    data = slave.fmu.serializeFMUstate(state)
+    slave.fmu.freeFMUstate(state)
+    bad = {f"first {n} bytes": data[:n] for n in (1, 8, 12, 20, len(data) // 2, len(data) - 8, len(data) - 1)}
+    bad["one byte more"] = data + b"\0"
+    for i in range(0, len(data), max(1, len(data) // 24)):
+        flipped = bytearray(data)
+        flipped[i] ^= 0x10
+        bad[f"bit flip at byte {i}"] = bytes(flipped)
+    for what, corrupted in bad.items():
+        message = refused(slave, lambda: slave.fmu.deSerializeFMUstate(corrupted), "fmi2DeSerializeFMUstate", "not valid")
+        assert message, what
+    # The intact bytes still load: the refusals above were about the bytes, not the instance.
+    restored = slave.fmu.deSerializeFMUstate(data)
+    slave.fmu.setFMUstate(restored)
+    slave.fmu.freeFMUstate(restored)
+    slave.free()
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_corrupted_state_with_a_matching_checksum_is_refused(model):
+    """Regressions: bytes whose checksum matches but whose content is bad once loaded a start
+    time of -inf (the next doStep never returned) and NaN parameters (outputs NaN with OK)."""
+    slave = in_state(model, SC)
+    state = slave.fmu.getFMUstate()
+    data = slave.fmu.serializeFMUstate(state)
+    slave.fmu.freeFMUstate(state)
+    # Numbers: phase, start time, stop time (NaN = none), time, last successful time, count.
+    for index, value in [(0, 99.0), (1, -math.inf), (1, math.nan), (3, math.inf), (3, -1.0), (4, math.nan), (5, 3.0)]:
+        refused(slave, lambda: slave.fmu.deSerializeFMUstate(forge(data, index, value)), "fmi2DeSerializeFMUstate", "not valid")
+    for variable in variables(model, "parameter", "Real"):
+        index = 6 + [v.name for v in variables(model)].index(variable.name)
+        forged = slave.fmu.deSerializeFMUstate(forge(data, index, math.nan))
+        refused(slave, lambda: slave.fmu.setFMUstate(forged), "fmi2SetFMUstate", variable.name, "expected a finite number")
+        slave.fmu.freeFMUstate(forged)
+    slave.fmu.doStep(default_step(model), default_step(model))
+    slave.free()
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_outputs_that_cannot_be_evaluated_are_refused_not_returned_as_nan(model):
+    """Regression: at startTime = 1.8e308 LongitudinalFriction's vr and TransverseFriction's FF
+    were NaN, and fmi2GetReal returned them with fmi2OK. Finite values, or a refusal."""
+    slave = Slave(model)
+    slave.fmu.setupExperiment(startTime=1.7976931348623157e308)
+    slave.fmu.enterInitializationMode()
+    outputs = [v.valueReference for v in variables(model, "output", "Real")]
+    for phase in (IM, SC):
+        if phase == SC:
+            slave.fmu.exitInitializationMode()
+        try:
+            values = slave.fmu.getReal(outputs)
+        except FMICallException as error:
+            assert error.status == 3
+            assert "fmi2GetReal" in slave.last_message()
+            assert "expected a finite value" in slave.last_message()
+        else:
+            assert all(math.isfinite(x) for x in values), (phase, values)
+    slave.free()
+
+
+def library(slave):
+    """The FMU's shared library as fmpy loaded it, with the argument types we call it with."""
+    dll = slave.fmu.dll
+    dll.fmi2FreeInstance.argtypes = [c_void_p]
+    dll.fmi2FreeInstance.restype = None
+    dll.fmi2DoStep.argtypes = [c_void_p, ctypes.c_double, ctypes.c_double, ctypes.c_int]
+    dll.fmi2GetReal.argtypes = [c_void_p, c_void_p, c_size_t, c_void_p]
+    dll.fmi2Reset.argtypes = [c_void_p]
+    return dll
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_free_instance_twice_or_on_null_is_harmless(model):
+    keeper = Slave(model, "keeper")  # holds the library loaded while the other is freed by hand
+    slave = in_state(model, SC)
+    dll = library(slave)
+    component = slave.fmu.component
+    dll.fmi2FreeInstance(component)
+    dll.fmi2FreeInstance(component)
+    dll.fmi2FreeInstance(None)
+    # Calls on the freed instance or on NULL are errors (no logger is left to tell).
+    logged = len(slave.messages)
+    vr = (ctypes.c_uint * 1)(variables(model, "output", "Real")[0].valueReference)
+    value = (ctypes.c_double * 1)()
+    for c in (component, None):
+        assert dll.fmi2DoStep(c, 0.0, default_step(model), 1) == 3
+        assert dll.fmi2GetReal(c, vr, 1, value) == 3
+        assert dll.fmi2Reset(c) == 3
+    assert len(slave.messages) == logged
+    slave.fmu.freeLibrary()
+    # The other instance never noticed.
+    keeper.initialize()
+    keeper.fmu.doStep(0.0, default_step(model))
+    keeper.free()
