@@ -289,14 +289,13 @@ unsafe fn get_values<T>(
         let (Some(vrs), Some(out)) = (slice(vr, nvr), slice_mut(value, nvr)) else {
             return null_argument(instance, function, "vr or value");
         };
-        let mut buffer = vec![0.0; nvr];
-        let status = instance.get(function, vrs, &mut buffer, accepts, type_name);
-        if status == Status::Ok {
-            for (slot, x) in out.iter_mut().zip(buffer) {
-                *slot = convert(x);
-            }
-        }
-        status
+        instance.get(
+            function,
+            vrs,
+            &mut |i, x| out[i] = convert(x),
+            accepts,
+            type_name,
+        )
     })
 }
 
@@ -319,8 +318,7 @@ unsafe fn set_values<T: Copy>(
             return null_argument(instance, function, "vr or value");
         };
         instance.trace(|| format!("{function}(vr = {vrs:?})"));
-        let values: Vec<f64> = values.iter().map(|&v| convert(v)).collect();
-        instance.set(function, vrs, &values, accepts, type_name)
+        instance.set(function, vrs, &|i| convert(values[i]), accepts, type_name)
     })
 }
 

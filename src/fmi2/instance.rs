@@ -277,45 +277,48 @@ impl Instance {
         }
     }
 
-    /// Reads values of one FMI type; `accepts` says which variable kinds that type covers.
+    /// Reads values of one FMI type, handing each to `out(index, value)`; `accepts` says which
+    /// variable kinds that type covers.
     pub fn get(
         &mut self,
         function: &str,
         value_references: &[u32],
-        out: &mut [f64],
+        out: &mut dyn FnMut(usize, f64),
         accepts: fn(&Kind) -> bool,
         type_name: &str,
     ) -> Status {
         if let Err(status) = self.check_phase(function, READABLE) {
             return status;
         }
-        let mut vars = Vec::with_capacity(value_references.len());
+        // Two passes over the references instead of a list of variables: getters run every
+        // communication step, and allocate nothing.
+        let mut any_output = false;
         for &vr in value_references {
             match self.variable(function, vr, accepts, type_name) {
-                Ok(var) => vars.push(var),
+                Ok(var) => any_output |= var.causality == Causality::Output,
                 Err(status) => return status,
             }
         }
-        if vars.iter().any(|v| v.causality == Causality::Output) {
+        if any_output {
             if let Err(status) = self.refresh_outputs(function) {
                 return status;
             }
         }
         // As in do_step: no NaN reaches the master silently (a scene can produce one where it
         // cannot be evaluated, e.g. at an absurd start time).
-        if let Some(var) = vars
+        if let Some(&vr) = value_references
             .iter()
-            .find(|v| !self.values.real(v.value_reference).is_finite())
+            .find(|&&vr| !self.values.real(vr).is_finite())
         {
+            let name = self.model.table.variable(vr).map_or("?", |v| v.name);
             return self.error(&format!(
-                "{function}: {} is {} at t = {}: the model cannot be evaluated there; expected a finite value",
-                var.name,
-                self.values.real(var.value_reference),
+                "{function}: {name} is {} at t = {}: the model cannot be evaluated there; expected a finite value",
+                self.values.real(vr),
                 self.time
             ));
         }
-        for (slot, var) in out.iter_mut().zip(&vars) {
-            *slot = self.values.real(var.value_reference);
+        for (i, &vr) in value_references.iter().enumerate() {
+            out(i, self.values.real(vr));
         }
         Status::Ok
     }
@@ -326,14 +329,15 @@ impl Instance {
         &mut self,
         function: &str,
         value_references: &[u32],
-        values: &[f64],
+        value_at: &dyn Fn(usize) -> f64,
         accepts: fn(&Kind) -> bool,
         type_name: &str,
     ) -> Status {
         if let Err(status) = self.check_phase(function, WRITABLE) {
             return status;
         }
-        for (&vr, &value) in value_references.iter().zip(values) {
+        for (i, &vr) in value_references.iter().enumerate() {
+            let value = value_at(i);
             let var = match self.variable(function, vr, accepts, type_name) {
                 Ok(var) => var,
                 Err(status) => return status,
@@ -361,8 +365,8 @@ impl Instance {
                 return self.error(&format!("{function}: {message}"));
             }
         }
-        for (&vr, &value) in value_references.iter().zip(values) {
-            self.values.set(vr, value);
+        for (i, &vr) in value_references.iter().enumerate() {
+            self.values.set(vr, value_at(i));
         }
         Status::Ok
     }

@@ -15,7 +15,7 @@ use super::{require_positive, Scene};
 use crate::friction::{coulomb, dahl::Dahl, lugre::LuGre};
 use crate::interface::longitudinal::vr;
 use crate::interface::values::ValueSet;
-use crate::solve::Work;
+use crate::solve::{within_step_budget, Work};
 use ode::Solver;
 use std::f64::consts::TAU;
 
@@ -227,9 +227,11 @@ impl Scene for Longitudinal {
         }
         let t_end = self.t + h;
         let mut t = self.t;
+        let steps_at_start = self.work.steps;
         while t < t_end {
             let next = self.substep_end(t, t_end);
             self.substep(t, next)?;
+            within_step_budget(&self.work, steps_at_start, next)?;
             t = next;
         }
         self.t = t_end;

@@ -59,16 +59,51 @@ pub fn model(model_identifier: &str) -> Option<&'static Model> {
         .find(|m| m.table.model_identifier == model_identifier)
 }
 
-/// Checks a strictly positive parameter, with the message the FMI logger shows otherwise.
-pub fn require_positive(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
+/// A parameter value checked on its way into a scene: `ok` says whether `x` is acceptable,
+/// `expected` is how the message says what would be (the setters check the tables' ranges already;
+/// these also guard values restored from FMU states and the scenes' own unit tests).
+fn require(
+    values: &ValueSet,
+    value_reference: u32,
+    ok: fn(f64) -> bool,
+    expected: &str,
+) -> Result<f64, String> {
     let x = values.real(value_reference);
-    if x > 0.0 && x.is_finite() {
+    if ok(x) {
         Ok(x)
     } else {
         let name = values
             .table
             .variable(value_reference)
             .map_or("?", |v| v.name);
-        Err(format!("{name} = {x} is out of range: expected {name} > 0"))
+        Err(format!(
+            "{name} = {x} is out of range: expected {}",
+            expected.replace("{name}", name)
+        ))
     }
+}
+
+/// A strictly positive, finite parameter.
+pub fn require_positive(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
+    require(
+        values,
+        value_reference,
+        |x| x > 0.0 && x.is_finite(),
+        "{name} > 0",
+    )
+}
+
+/// A finite parameter >= 0.
+pub fn require_non_negative(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
+    require(
+        values,
+        value_reference,
+        |x| x >= 0.0 && x.is_finite(),
+        "{name} >= 0",
+    )
+}
+
+/// Any finite value.
+pub fn require_finite(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
+    require(values, value_reference, f64::is_finite, "a finite number")
 }

@@ -15,11 +15,11 @@
 pub mod exact;
 mod solver;
 
-use super::{require_positive, Scene};
+use super::{require_finite, require_non_negative, require_positive, Scene};
 use crate::friction::regularized::{stiction_excess, Regularized};
 use crate::interface::oscillator::vr;
 use crate::interface::values::ValueSet;
-use crate::solve::{Ode, Work};
+use crate::solve::{within_step_budget, Ode, Work};
 use exact::{Event, Mode, State, Switch};
 use solver::Solver;
 use std::f64::consts::TAU;
@@ -120,36 +120,6 @@ pub struct Oscillator {
 
 pub fn build(values: &ValueSet, start_time: f64) -> Result<Box<dyn Scene>, String> {
     Ok(Box::new(Oscillator::new(values, start_time)?))
-}
-
-fn require_non_negative(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
-    let x = values.real(value_reference);
-    if x >= 0.0 && x.is_finite() {
-        Ok(x)
-    } else {
-        let name = values
-            .table
-            .variable(value_reference)
-            .map_or("?", |v| v.name);
-        Err(format!(
-            "{name} = {x} is out of range: expected {name} >= 0"
-        ))
-    }
-}
-
-fn require_finite(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
-    let x = values.real(value_reference);
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        let name = values
-            .table
-            .variable(value_reference)
-            .map_or("?", |v| v.name);
-        Err(format!(
-            "{name} = {x} is out of range: expected a finite number"
-        ))
-    }
 }
 
 impl Oscillator {
@@ -270,7 +240,9 @@ impl Oscillator {
             Core::Regularized(equations, solver) => {
                 equations.held = held;
                 let mut largest = self.state.u.abs();
+                let steps_at_start = self.work.steps;
                 while self.state.t < t_end {
+                    within_step_budget(&self.work, steps_at_start, self.state.t)?;
                     let t0 = self.state.t;
                     let t1 = if t_end - t0 <= self.max_substep * (1.0 + 1e-9) {
                         t_end
@@ -308,7 +280,9 @@ impl Oscillator {
         }
         self.held = held;
         let t_end = self.state.t + h;
+        let steps_at_start = self.work.steps;
         while self.state.t < t_end {
+            within_step_budget(&self.work, steps_at_start, self.state.t)?;
             let boundary = self.amplitude.next_boundary();
             // A boundary within round-off of t_end closes its period at t_end (PeriodMax::add).
             let segment_end = if boundary < t_end - 1e-9 * self.amplitude.period {

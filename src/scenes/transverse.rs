@@ -11,14 +11,14 @@
 mod two_phase;
 
 use super::period_mean::PeriodMean;
-use super::{require_positive, Scene};
+use super::{require_finite, require_non_negative, require_positive, Scene};
 use crate::friction::lugre2d::{Contact, LuGre2d, SlipLaw};
 use crate::interface::transverse::vr;
 use crate::interface::values::ValueSet;
 use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
 use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
-use crate::solve::{Integrator, Ode, Work, MAX_DIM};
+use crate::solve::{within_step_budget, Integrator, Ode, Work, MAX_DIM};
 use nalgebra::Vector2;
 use std::f64::consts::TAU;
 
@@ -169,35 +169,6 @@ pub struct Transverse {
 
 pub fn build(values: &ValueSet, start_time: f64) -> Result<Box<dyn Scene>, String> {
     Ok(Box::new(Transverse::new(values, start_time)?))
-}
-
-/// A parameter that must be finite and >= 0.
-fn require_non_negative(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
-    let x = values.real(value_reference);
-    if x >= 0.0 && x.is_finite() {
-        Ok(x)
-    } else {
-        let name = values
-            .table
-            .variable(value_reference)
-            .map_or("?", |v| v.name);
-        Err(format!(
-            "{name} = {x} is out of range: expected {name} >= 0"
-        ))
-    }
-}
-
-fn require_finite(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
-    let x = values.real(value_reference);
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        let name = values
-            .table
-            .variable(value_reference)
-            .map_or("?", |v| v.name);
-        Err(format!("{name} = {x} is not a finite number"))
-    }
 }
 
 impl Transverse {
@@ -401,7 +372,9 @@ impl Scene for Transverse {
         }
         let t_end = self.t + h;
         let mut t = self.t;
+        let steps_at_start = self.work.steps;
         while t < t_end {
+            within_step_budget(&self.work, steps_at_start, t)?;
             let boundary = self.mean.next_boundary();
             // A boundary within round-off of t_end is t_end (the master's clock drifts).
             let next = if boundary < t_end - 1e-9 / self.p.f {

@@ -113,7 +113,7 @@ impl Dopri5 {
             atol,
             h_max,
             h: 0.0,
-            max_steps: 100_000_000,
+            max_steps: super::MAX_STEPS_PER_DO_STEP,
         }
     }
 

@@ -40,3 +40,21 @@ pub trait Integrator {
         work: &mut Work,
     ) -> Result<(), String>;
 }
+
+/// The most steps (sub-steps of every kind, as counted in [`Work::steps`]) one communication
+/// step may take: about a second of CPU for the costliest solver here. Past it the scene stops
+/// with a message and the FMU returns fmi2Discard, instead of running for minutes when the
+/// parameters (a microgram mass, a terahertz vibration) or a very long step ask for millions.
+pub const MAX_STEPS_PER_DO_STEP: u64 = 2_000_000;
+
+/// Errs once `work` has taken more than [`MAX_STEPS_PER_DO_STEP`] steps since it counted
+/// `steps_at_start`; `t` is where the step stopped.
+pub fn within_step_budget(work: &Work, steps_at_start: u64, t: f64) -> Result<(), String> {
+    if work.steps.saturating_sub(steps_at_start) > MAX_STEPS_PER_DO_STEP {
+        Err(format!(
+            "more than {MAX_STEPS_PER_DO_STEP} integration steps in one communication step (stopped at t = {t}): use a shorter communication step, or a tolerance or parameters that make the problem less stiff"
+        ))
+    } else {
+        Ok(())
+    }
+}

@@ -32,7 +32,7 @@ impl Integrator for Rk4 {
         }
         // A hair of slack so an interval of exactly k steps is not split into k + 1.
         let steps = ((t1 - t0) / self.h_max * (1.0 - 1e-12)).ceil().max(1.0);
-        if steps > 1e12 {
+        if steps > super::MAX_STEPS_PER_DO_STEP as f64 {
             return Err(format!(
                 "rk4: {steps} steps of {} s to cover [{t0}, {t1}]",
                 self.h_max

@@ -28,7 +28,11 @@ fn bad_parameters_are_refused_with_a_message() {
         (vr::ETA, -0.1, "expected 0 <= eta <= 1"),
         (vr::F, 0.0, "expected f > 0"),
         (vr::M, f64::NAN, "m = NaN"),
-        (vr::VD, f64::NAN, "vd = NaN is not a finite number"),
+        (
+            vr::VD,
+            f64::NAN,
+            "vd = NaN is out of range: expected a finite number",
+        ),
         (vr::TOLERANCE, 0.5, "expected 1e-14 <= tolerance"),
     ] {
         let mut v = values("dopri5", "split");

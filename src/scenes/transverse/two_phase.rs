@@ -75,6 +75,13 @@ impl TwoPhase {
         work: &mut Work,
     ) -> Result<(), String> {
         let dt = 1.0 / (p.f * f64::from(self.steps_per_period));
+        if (t1 - t0) / dt > crate::solve::MAX_STEPS_PER_DO_STEP as f64 {
+            return Err(format!(
+                "two_phase: {:.3e} steps of {dt:e} s to reach t = {t1}: more than {} in one communication step; use a shorter communication step or fewer steps_per_period",
+                (t1 - t0) / dt,
+                crate::solve::MAX_STEPS_PER_DO_STEP
+            ));
+        }
         let mut t = t0;
         while t < t1 {
             // The grid point after t; round-off may put (t - origin)/dt just below an integer.
