@@ -79,7 +79,7 @@ def through_fmpy(law, kt_factor, t_end, solver, knob):
              "solver": items["TransverseSolver"][solver],
              "initial": items["InitialState"]["sliding"] if "InitialState" in items else None,
              "vd": VD, "va": VA, "f": F, "kt": KT * kt_factor}
-    if solver in ("rk4", "two_phase"):
+    if solver in ("rk4", "two_phase", "exponential"):
         start["steps_per_period"] = int(knob)
     else:
         start["tolerance"] = knob
@@ -141,9 +141,11 @@ def part1(quick):
     for law, ktf in cases:
         t_end = 1.0 if ktf == 1 else 0.1
         ref = in_process(law, ktf, t_end, ["dopri5:1e-12"])["dopri5:1e-12"][0]
-        specs = (["dopri5:1e-5", "dopri5:1e-6", "dopri5:1e-7", "rk4:200", "radau5:1e-6"]
+        specs = (["dopri5:1e-5", "dopri5:1e-6", "dopri5:1e-7", "rk4:200", "radau5:1e-6",
+                  "exponential:400", "exponential:1600"]
                  if ktf == 1
-                 else ["dopri5:1e-4", "radau5:1e-4", "radau5:3e-5", "radau5:1e-5", "radau5:1e-6"])
+                 else ["dopri5:1e-4", "radau5:1e-4", "radau5:3e-5", "radau5:1e-5", "radau5:1e-6",
+                       "exponential:100", "exponential:200", "exponential:400"])
         rows = in_process(law, ktf, t_end, specs)
         for spec in specs:
             solver, knob = spec.split(":")

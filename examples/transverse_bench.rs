@@ -4,7 +4,7 @@
 //!   cargo run --release --example transverse_bench -- SLIP_LAW KT_FACTOR T_END COMM_STEP \
 //!       SOLVER:KNOB [SOLVER:KNOB ...]
 //!
-//! KNOB is a tolerance for dopri5/exponential and steps per period for rk4/two_phase. Output:
+//! KNOB is a tolerance for dopri5/radau5 and steps per period for rk4/two_phase/exponential. Output:
 //! `slip_law,kt_factor,solver,knob,FFx_mean,cpu_seconds,rhs_evaluations,steps,rejected`.
 //! The clock is the process CPU time as /proc/self/stat reports it (the run is single-threaded).
 
@@ -54,7 +54,7 @@ fn run(args: &[String]) -> Result<(), String> {
         v.set(vr::VA, 2e-3);
         v.set(vr::F, 3000.0);
         v.set(vr::KT, v.real(vr::KT) * kt_factor);
-        if solver == "rk4" || solver == "two_phase" {
+        if matches!(solver, "rk4" | "two_phase" | "exponential") {
             v.set(vr::STEPS_PER_PERIOD, knob);
         } else {
             v.set(vr::TOLERANCE, knob);

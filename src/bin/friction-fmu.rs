@@ -5,7 +5,7 @@
 //!                                    and write figures into DIR/figures (the default command)
 //!   friction-fmu report [--out DIR]  error against run time of every solver of every scene:
 //!                                    DIR/<scene>.md tables and DIR/<scene>.svg plots
-//!                                    (default DIR: report)
+//!                                    (default DIR: report); then prints the stability matrix
 
 use friction_fmu::{package, report, scenes};
 use std::path::{Path, PathBuf};
@@ -49,6 +49,26 @@ fn work_precision(out: &Path) -> Result<(), String> {
     for path in report::work_precision::write_all(&report::cases::all(), out)? {
         println!("wrote {}", path.display());
     }
+    stability()
+}
+
+/// The stability matrix runs the FMUs through the in-process driver, built where it is.
+#[cfg(all(
+    target_os = "linux",
+    any(target_arch = "x86_64", target_arch = "aarch64")
+))]
+fn stability() -> Result<(), String> {
+    println!("\nStability matrix: every solver at the stiff and extreme cases\n");
+    let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
+    let rows = report::stability::matrix(threads);
+    report::stability::print(&rows, &mut std::io::stdout()).map_err(|e| e.to_string())
+}
+
+#[cfg(not(all(
+    target_os = "linux",
+    any(target_arch = "x86_64", target_arch = "aarch64")
+)))]
+fn stability() -> Result<(), String> {
     Ok(())
 }
 

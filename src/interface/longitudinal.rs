@@ -31,6 +31,7 @@ pub mod vr {
     pub const VR: u32 = 42;
     pub const FT_MEAN: u32 = 43;
     pub const S: u32 = 44;
+    pub const W_DISS: u32 = 45;
 }
 
 const INF: f64 = f64::INFINITY;
@@ -251,6 +252,13 @@ const VARIABLES: &[Variable] = &[
         vr::S,
         "Reduction of the mean friction force, (1 - FT_mean/FC)*100 (eq. 3.3)",
         "%",
+        &[],
+    ),
+    real_output(
+        "W_diss",
+        vr::W_DISS,
+        "Energy dissipated by the contact since the start: the integral of FT vr minus the energy kt z^2/2 stored in the deflection (never negative: the contact is passive)",
+        "J",
         &[],
     ),
 ];

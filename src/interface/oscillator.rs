@@ -31,6 +31,7 @@ pub mod vr {
     pub const H_OUT: u32 = 43;
     pub const C_OUT: u32 = 44;
     pub const U_AMPLITUDE: u32 = 45;
+    pub const W_DISS: u32 = 46;
 }
 
 const INF: f64 = f64::INFINITY;
@@ -195,6 +196,13 @@ const VARIABLES: &[Variable] = &[
         vr::U_AMPLITUDE,
         "max |u| over the last complete forcing period 2 pi/w (so far, before the first)",
         "m",
+        &[],
+    ),
+    real_output(
+        "W_diss",
+        vr::W_DISS,
+        "Energy dissipated by friction since the start, the integral of H u' (H stores no energy)",
+        "J",
         &[],
     ),
 ];

@@ -39,6 +39,7 @@ pub mod vr {
     pub const Y: u32 = 46;
     pub const S: u32 = 47;
     pub const BETA: u32 = 48;
+    pub const W_DISS: u32 = 49;
 }
 
 const INF: f64 = f64::INFINITY;
@@ -69,6 +70,10 @@ pub const SOLVER: EnumType = EnumType {
         (
             "radau5",
             "Adaptive 3-stage Radau IIA (order 5, L-stable) to `tolerance`, for stiff contacts (large kt); steps end at the same kinks as dopri5",
+        ),
+        (
+            "exponential",
+            "steps_per_period fixed steps per vibration period, cut where v1, v2 (split) or v1 + v2 (total) change sign: exact exponential bristle update for frozen velocities (stable at any kt) around an explicit midpoint step of the body; second order; for stiff contacts; needs h sqrt(kt/m) < 2",
         ),
     ],
 };
@@ -127,7 +132,7 @@ const VARIABLES: &[Variable] = &[
     integer_parameter(
         "steps_per_period",
         vr::STEPS_PER_PERIOD,
-        "Fixed steps per vibration period (rk4, two_phase)",
+        "Fixed steps per vibration period (rk4, two_phase, exponential)",
         2000,
         1,
         100_000_000,
@@ -301,6 +306,13 @@ const VARIABLES: &[Variable] = &[
         vr::BETA,
         "Direction of the deflection: N - M = s (cos beta, -sin beta)",
         "rad",
+        &[],
+    ),
+    real_output(
+        "W_diss",
+        vr::W_DISS,
+        "Energy dissipated by the contact since the start: the work FF (v1 + v2) the body and the support do on it, minus the energy kt s^2/2 stored in the deflection",
+        "J",
         &[],
     ),
 ];

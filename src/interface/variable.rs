@@ -173,6 +173,13 @@ pub const UNITS: &[Unit] = &[
         rad: 0,
     },
     Unit {
+        name: "J",
+        kg: 1,
+        m: 2,
+        s: -2,
+        rad: 0,
+    },
+    Unit {
         name: "N.s/m",
         kg: 1,
         m: 0,

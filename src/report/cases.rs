@@ -88,6 +88,7 @@ pub fn transverse(slip_law: &'static str) -> Case {
     let mut settings = tolerances("dopri5", 4, 10);
     settings.extend(tolerances("radau5", 4, 9));
     settings.extend(steps("rk4", &[50, 100, 200, 400, 800, 1600]));
+    settings.extend(steps("exponential", &[50, 100, 200, 400, 800, 1600, 3200]));
     if slip_law == "split" {
         // The paper's scheme is the split law by construction: under `total` it converges to
         // the other model, which this table would show as a 3.5 % error floor.

@@ -4,6 +4,12 @@ pub mod cases;
 pub mod longitudinal;
 pub mod oscillator;
 pub mod progress;
+// Runs the FMUs through the in-process driver, which exists where it does.
+#[cfg(all(
+    target_os = "linux",
+    any(target_arch = "x86_64", target_arch = "aarch64")
+))]
+pub mod stability;
 pub mod svg;
 pub mod transverse;
 pub mod work_precision;

@@ -11,7 +11,7 @@
 mod ode;
 
 use super::period_mean::PeriodMean;
-use super::{require_positive, Scene};
+use super::{require_passive, require_positive, Scene};
 use crate::friction::{coulomb, dahl::Dahl, lugre::LuGre};
 use crate::interface::longitudinal::vr;
 use crate::interface::values::ValueSet;
@@ -48,6 +48,8 @@ pub struct Longitudinal {
     /// The input velocity held over the current step.
     v_held: f64,
     mean: PeriodMean,
+    /// The work of the friction force on the sliding since the start, the integral of FT vr.
+    friction_work: f64,
     pub work: Work,
 }
 
@@ -118,6 +120,7 @@ impl Longitudinal {
             z: 0.0,
             v_held: values.real(vr::VR_IN),
             mean: PeriodMean::new(start_time, 1.0 / f),
+            friction_work: 0.0,
             work: Work::default(),
         })
     }
@@ -142,6 +145,20 @@ impl Longitudinal {
 
     pub fn mean_force(&self) -> f64 {
         self.mean.value(self.t, self.friction_force())
+    }
+
+    /// The energy the contact has dissipated since the start: the friction work minus the
+    /// energy stored in the deflection (Coulomb stores none).
+    pub fn dissipated_energy(&self) -> f64 {
+        self.friction_work - self.stored_energy()
+    }
+
+    fn stored_energy(&self) -> f64 {
+        match self.law {
+            Law::Coulomb => 0.0,
+            Law::Dahl(law) => 0.5 * law.kt * self.z * self.z,
+            Law::LuGre(law) => 0.5 * law.sigma0 * self.z * self.z,
+        }
     }
 
     /// The end of the sub-step starting at `t`: the next grid point (1/n period, fixed-step
@@ -192,9 +209,10 @@ impl Longitudinal {
         if !matches!(self.solver, Solver::Exponential) && self.law != Law::Coulomb {
             let (source, f, held) = (self.velocity, self.f, self.v_held);
             let velocity = move |t: f64| velocity_at(source, f, held, t);
-            let integral =
+            let (integral, power_integral) =
                 self.solver
                     .advance(&self.law, &velocity, t0, t1, &mut self.z, &mut self.work)?;
+            self.friction_work += power_integral;
             self.mean.add(integral, t1);
             return Ok(());
         }
@@ -215,6 +233,9 @@ impl Longitudinal {
                 force_integral
             }
         };
+        // The velocity is frozen over the sub-step, so this is the exact work of the scheme's
+        // force: with the exact bristle update the scheme is as passive as the contact.
+        self.friction_work += v * integral;
         self.mean.add(integral, t1);
         Ok(())
     }
@@ -235,13 +256,23 @@ impl Scene for Longitudinal {
             t = next;
         }
         self.t = t_end;
-        if self.z.is_finite() {
-            Ok(())
-        } else {
-            Err(format!(
+        if !self.z.is_finite() {
+            return Err(format!(
                 "the bristle deflection became {} at t = {t_end}",
                 self.z
-            ))
+            ));
+        }
+        match self.law {
+            // LuGre's bristle damping sigma1 can return energy (the law is passive only for
+            // small sigma1), so only the other laws are held to it.
+            Law::LuGre(law) if law.sigma1 > 0.0 => Ok(()),
+            _ => require_passive(
+                self.dissipated_energy(),
+                self.stored_energy(),
+                1e-6,
+                t_end,
+                "use more steps_per_period, or the exponential solver (stable at any step)",
+            ),
         }
     }
 
@@ -257,6 +288,7 @@ impl Scene for Longitudinal {
         values.set(vr::VR, now.velocity_at(now.t));
         values.set(vr::FT_MEAN, ft_mean);
         values.set(vr::S, (1.0 - ft_mean / now.fc) * 100.0);
+        values.set(vr::W_DISS, now.dissipated_energy());
     }
 
     fn time(&self) -> f64 {
@@ -267,13 +299,14 @@ impl Scene for Longitudinal {
         let mut state = vec![self.t, self.z, self.v_held];
         state.extend(self.mean.save());
         state.push(self.solver.step_hint());
+        state.push(self.friction_work);
         state
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
-        if state.len() != 7 || state.iter().any(|x| !x.is_finite()) {
+        if state.len() != 8 || state.iter().any(|x| !x.is_finite()) {
             return Err(format!(
-                "a LongitudinalFriction state has 7 finite numbers, got {}",
+                "a LongitudinalFriction state has 8 finite numbers, got {}",
                 state.len()
             ));
         }
@@ -282,6 +315,7 @@ impl Scene for Longitudinal {
         self.v_held = state[2];
         self.mean.restore(&state[3..6]);
         self.solver.set_step_hint(state[6]);
+        self.friction_work = state[7];
         Ok(())
     }
 }

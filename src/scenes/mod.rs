@@ -107,3 +107,25 @@ pub fn require_non_negative(values: &ValueSet, value_reference: u32) -> Result<f
 pub fn require_finite(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
     require(values, value_reference, f64::is_finite, "a finite number")
 }
+
+/// Errs when a contact has created energy: `dissipated` (the friction work minus `stored`, the
+/// energy in the deflection) is below zero by more than `tolerance` times the energies it is the
+/// difference of. A fixed step beyond the solver's stability bound shows here first, while the
+/// state is still finite but meaningless. The tolerance is far above the solvers' truncation
+/// error and far below what an unstable step produces.
+pub fn require_passive(
+    dissipated: f64,
+    stored: f64,
+    tolerance: f64,
+    t: f64,
+    advice: &str,
+) -> Result<(), String> {
+    let scale = dissipated.abs() + stored.abs();
+    if dissipated.is_finite() && stored.is_finite() && dissipated >= -tolerance * scale {
+        Ok(())
+    } else {
+        Err(format!(
+            "the contact created energy by t = {t} (dissipated {dissipated:e} J, stored {stored:e} J): the integration is unstable; {advice}"
+        ))
+    }
+}

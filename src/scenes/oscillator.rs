@@ -24,7 +24,8 @@ use exact::{Event, Mode, State, Switch};
 use solver::Solver;
 use std::f64::consts::TAU;
 
-/// The regularised equations of motion, `y = (u, u')`.
+/// The regularised equations of motion, `y = (u, u', W)` with W the friction work, the integral
+/// of H u' (a quadrature state, integrated to the solver's order).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Equations {
     pub m: f64,
@@ -48,6 +49,27 @@ impl Equations {
         }
     }
 
+    /// rk4 blows up (through many steps of finite nonsense) where h times an eigenvalue of the
+    /// linear part `m u'' + c u' + k u`, which acts at every instant, leaves its stability
+    /// region, which lies within |h lambda| < 3 (2.96 at most). The friction slope is left out:
+    /// it acts only while |u'| < D, and rk4 crosses that band without harm when the motion
+    /// does not stick there.
+    pub fn require_rk4_stable(&self, h: f64) -> Result<(), String> {
+        let disc = self.c * self.c - 4.0 * self.m * self.k;
+        let rate = if disc >= 0.0 {
+            (self.c + disc.sqrt()) / (2.0 * self.m)
+        } else {
+            (self.k / self.m).sqrt()
+        };
+        if h * rate <= 3.0 {
+            Ok(())
+        } else {
+            Err(format!(
+                "rk4: the step {h:e} s is beyond its stability bound 3/{rate:e} s set by m, c and k; use more steps_per_period (or the radau5 solver)"
+            ))
+        }
+    }
+
     /// `(H, C, u'')` at (t, u, u').
     pub fn evaluate(&self, t: f64, u: f64, v: f64) -> (f64, f64, f64) {
         let (h, c) = self.law.eval(v);
@@ -57,11 +79,13 @@ impl Equations {
 
 impl Ode for Equations {
     fn dim(&self) -> usize {
-        2
+        3
     }
     fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        let (h, _, a) = self.evaluate(t, y[0], y[1]);
         dydt[0] = y[1];
-        dydt[1] = self.evaluate(t, y[0], y[1]).2;
+        dydt[1] = a;
+        dydt[2] = h * y[1];
     }
 }
 
@@ -196,6 +220,7 @@ impl Oscillator {
                 u: u0,
                 v: v0,
                 mode,
+                dissipated: 0.0,
             },
             held,
             max_substep: period / steps,
@@ -249,7 +274,10 @@ impl Oscillator {
                     } else {
                         t0 + self.max_substep
                     };
-                    let start = [self.state.u, self.state.v];
+                    if let Solver::Rk4(_) = solver {
+                        equations.require_rk4_stable(t1 - t0)?;
+                    }
+                    let start = [self.state.u, self.state.v, self.state.dissipated];
                     let probe = solver.clone();
                     let mut y = start;
                     solver.integrate(&*equations, t0, t1, &mut y, &mut self.work)?;
@@ -261,6 +289,7 @@ impl Oscillator {
                     self.state.t = t1;
                     self.state.u = y[0];
                     self.state.v = y[1];
+                    self.state.dissipated = y[2];
                     largest = largest.max(y[0].abs());
                 }
                 Ok(largest)
@@ -323,8 +352,8 @@ impl Oscillator {
 fn turning_point(
     equations: &Equations,
     solver: Solver,
-    (t0, y0): (f64, [f64; 2]),
-    (t1, y1): (f64, [f64; 2]),
+    (t0, y0): (f64, [f64; 3]),
+    (t1, y1): (f64, [f64; 3]),
     work: &mut Work,
 ) -> Result<f64, String> {
     let atol = solver.atol();
@@ -385,6 +414,7 @@ impl Scene for Oscillator {
         values.set(vr::H_OUT, friction);
         values.set(vr::C_OUT, slope);
         values.set(vr::U_AMPLITUDE, self.amplitude.value());
+        values.set(vr::W_DISS, self.state.dissipated);
     }
 
     fn time(&self) -> f64 {
@@ -406,18 +436,20 @@ impl Scene for Oscillator {
             self.amplitude.running,
             self.amplitude.last,
             step_hint,
+            self.state.dissipated,
         ]
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
         let mode = state.get(3).copied().and_then(Mode::from_code);
         match mode {
-            Some(mode) if state.len() == 9 && state.iter().all(|x| x.is_finite()) => {
+            Some(mode) if state.len() == 10 && state.iter().all(|x| x.is_finite()) => {
                 self.state = State {
                     t: state[0],
                     u: state[1],
                     v: state[2],
                     mode,
+                    dissipated: state[9],
                 };
                 self.held = state[4];
                 self.amplitude.completed = state[5] as u64;
@@ -429,7 +461,7 @@ impl Scene for Oscillator {
                 Ok(())
             }
             _ => Err(format!(
-                "a DryFrictionOscillator state has 9 finite numbers with a mode of 0 or +-1, got {} numbers",
+                "a DryFrictionOscillator state has 10 finite numbers with a mode of 0 or +-1, got {} numbers",
                 state.len()
             )),
         }

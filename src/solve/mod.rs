@@ -11,8 +11,8 @@ pub mod radau;
 pub mod rk4;
 
 /// The largest state vector any scene integrates (including quadrature states such as the
-/// running integral of a force).
-pub const MAX_DIM: usize = 8;
+/// running integral of a force or of its power).
+pub const MAX_DIM: usize = 9;
 
 /// A system of ODEs `y' = f(t, y)`.
 pub trait Ode {

@@ -128,7 +128,9 @@ fn jacobian(
     let mut fp = [0.0; MAX_DIM];
     yp[..n].copy_from_slice(&y[..n]);
     for j in 0..n {
-        let nominal = (f64::EPSILON * y[j].abs().max(atol[j]).max(1e-12)).sqrt();
+        // An uncontrolled state's infinite atol says nothing of its size.
+        let a = if atol[j].is_finite() { atol[j] } else { 0.0 };
+        let nominal = (f64::EPSILON * y[j].abs().max(a).max(1e-12)).sqrt();
         yp[j] = y[j] + nominal;
         // The increment actually represented, so round-off cannot bias the quotient.
         let delta = yp[j] - y[j];
@@ -140,14 +142,18 @@ fn jacobian(
     }
 }
 
+/// RMS of x / scale. An infinite scale (an infinite `atol_scale`) leaves a quadrature state out
+/// of the error control, and out of the count, so that adding one does not dilute the others'.
 fn scaled_norm(x: &[f64], scale: &[f64]) -> f64 {
     let n = scale.len();
-    let sum: f64 = x
-        .iter()
-        .enumerate()
-        .map(|(i, xi)| (xi / scale[i % n]).powi(2))
-        .sum();
-    (sum / x.len() as f64).sqrt()
+    let (mut sum, mut count) = (0.0, 0);
+    for (i, xi) in x.iter().enumerate() {
+        if scale[i % n] != f64::INFINITY {
+            sum += (xi / scale[i % n]).powi(2);
+            count += 1;
+        }
+    }
+    (sum / count.max(1) as f64).sqrt()
 }
 
 impl Radau5 {

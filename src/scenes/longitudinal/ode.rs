@@ -1,6 +1,7 @@
 //! The solver menu of scene L. `exponential` is the scene's own scheme (in the parent module);
 //! the others integrate the bristle ODE `z' = rate(z, vr(t))` together with the force integral
-//! `q' = FT(z, vr(t))` as a second state, over sub-steps that never contain a sign change of vr.
+//! `q' = FT(z, vr(t))` and the friction work `w' = FT vr` as quadrature states (same order as
+//! the solver), over sub-steps that never contain a sign change of vr.
 
 use super::Law;
 use crate::interface::longitudinal::vr;
@@ -21,7 +22,7 @@ pub enum Solver {
     Radau5(Radau5),
 }
 
-/// `(z, q)` with the velocity as a function of time.
+/// `(z, q, w)` with the velocity as a function of time.
 struct Bristle<'a> {
     law: &'a Law,
     velocity: &'a dyn Fn(f64) -> f64,
@@ -29,7 +30,7 @@ struct Bristle<'a> {
 
 impl Ode for Bristle<'_> {
     fn dim(&self) -> usize {
-        2
+        3
     }
     fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let v = (self.velocity)(t);
@@ -41,6 +42,7 @@ impl Ode for Bristle<'_> {
         };
         dydt[0] = rate;
         dydt[1] = force;
+        dydt[2] = force * v;
     }
 }
 
@@ -75,11 +77,16 @@ impl Solver {
             Law::Coulomb => 1.0,
         };
         let (z_scale, q_scale) = (fc / kt, fc / f);
+        // The work w is left out of the error control (an infinite atol): the steps the
+        // deflection needs integrate it to the same order.
         Ok(if name == "radau5" {
-            Solver::Radau5(Radau5::new(rtol, rtol * z_scale.min(q_scale), 1.0 / f))
+            let mut radau = Radau5::new(rtol, rtol * z_scale.min(q_scale), 1.0 / f);
+            radau.atol_scale[2] = f64::INFINITY;
+            Solver::Radau5(radau)
         } else {
             let mut atol = [rtol * z_scale; MAX_DIM];
             atol[1] = rtol * q_scale;
+            atol[2] = f64::INFINITY;
             Solver::Dopri5(Dopri5::new(rtol, atol, 1.0 / f))
         })
     }
@@ -106,7 +113,8 @@ impl Solver {
         }
     }
 
-    /// Advances `z` over `[t0, t1]` (no sign change of vr inside); returns the force integral.
+    /// Advances `z` over `[t0, t1]` (no sign change of vr inside); returns the integrals of the
+    /// force and of its power FT vr.
     pub fn advance(
         &mut self,
         law: &Law,
@@ -115,9 +123,9 @@ impl Solver {
         t1: f64,
         z: &mut f64,
         work: &mut Work,
-    ) -> Result<f64, String> {
+    ) -> Result<(f64, f64), String> {
         let ode = Bristle { law, velocity };
-        let mut y = [*z, 0.0];
+        let mut y = [*z, 0.0, 0.0];
         match self {
             Solver::Exponential => return Err("exponential is not an ODE solver".into()),
             Solver::Rk4 { h_max } => Rk4 { h_max: *h_max }.integrate(&ode, t0, t1, &mut y, work)?,
@@ -125,6 +133,6 @@ impl Solver {
             Solver::Radau5(r) => r.integrate(&ode, t0, t1, &mut y, work)?,
         }
         *z = y[0];
-        Ok(y[1])
+        Ok((y[1], y[2]))
     }
 }

@@ -53,6 +53,8 @@ pub struct State {
     pub u: f64,
     pub v: f64,
     pub mode: Mode,
+    /// Energy dissipated by friction since the start, the integral of H u'.
+    pub dissipated: f64,
 }
 
 /// Parameters and the precomputed propagator of one grid step.
@@ -190,10 +192,14 @@ impl Switch {
         let budget = 10.0 + EVENTS_PER_GRID * ((t_end - st.t) / self.grid).ceil();
         let mut events = 0.0;
         while st.t < t_end {
-            let before = st.mode;
+            let (before, u_before) = (st.mode, st.u);
             match st.mode {
                 Mode::Stuck => self.stuck(st, t_end, held),
-                Mode::Sliding(s) => self.slide(st, s, t_end, held)?,
+                Mode::Sliding(s) => {
+                    self.slide(st, s, t_end, held)?;
+                    // H = h s and u' keeps the sign s over the phase: the work is h |u1 - u0|.
+                    st.dissipated += self.h * s * (st.u - u_before);
+                }
             }
             largest = largest.max(st.u.abs());
             if st.mode != before {

@@ -18,11 +18,21 @@ pub enum Solver {
 
 impl Solver {
     /// `name` is the `solver` item; `h_max` the longest step (the fixed step of rk4).
+    /// The friction work, state 2, is left out of the error control (an infinite atol): the
+    /// steps the motion needs integrate it to the same order.
     pub fn new(name: &str, rtol: f64, atol: f64, h_max: f64) -> Self {
         match name {
-            "dopri5" => Solver::Dopri5(Dopri5::new(rtol, [atol; MAX_DIM], h_max)),
+            "dopri5" => {
+                let mut atols = [atol; MAX_DIM];
+                atols[2] = f64::INFINITY;
+                Solver::Dopri5(Dopri5::new(rtol, atols, h_max))
+            }
             "rk4" => Solver::Rk4(Rk4 { h_max }),
-            _ => Solver::Radau5(Radau5::new(rtol, atol, h_max)),
+            _ => {
+                let mut radau = Radau5::new(rtol, atol, h_max);
+                radau.atol_scale[2] = f64::INFINITY;
+                Solver::Radau5(radau)
+            }
         }
     }
 

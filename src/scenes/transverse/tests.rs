@@ -9,7 +9,7 @@ fn values(solver: &str, slip: &str) -> ValueSet {
     v
 }
 
-fn mean_after(v: &ValueSet, periods: u32) -> f64 {
+pub(super) fn mean_after(v: &ValueSet, periods: u32) -> f64 {
     let mut scene = Transverse::new(v, 0.0).unwrap();
     let period = 1.0 / v.real(vr::F);
     for _ in 0..periods {
@@ -133,7 +133,7 @@ fn restore_continues_identically() {
     assert_eq!(a.mean_ffx(), b.mean_ffx());
 }
 
-fn issue_case(solver: &str, slip: &str, kt_factor: f64, tolerance: f64) -> ValueSet {
+pub(super) fn issue_case(solver: &str, slip: &str, kt_factor: f64, tolerance: f64) -> ValueSet {
     let mut v = values(solver, slip);
     v.set(vr::INITIAL, f64::from(INITIAL.value_of("sliding").unwrap()));
     v.set(vr::VD, 5e-4);

@@ -7,7 +7,7 @@
 //! a deflection that an Euler update drives below zero puts M on the other side of N.
 //! The mean of FFx sums FFx at the step ends times the step, the integral form of eq. 30.
 
-use super::{Params, LAMBDA, Q, VX, VY, X, Y, ZX, ZY};
+use super::{Params, LAMBDA, Q, VX, VY, W, X, Y, ZX, ZY};
 use crate::solve::Work;
 use nalgebra::Vector2;
 
@@ -165,5 +165,7 @@ impl TwoPhase {
         self.ffy = -ff * e2.y;
         self.beta = (-e2.y).atan2(e2.x);
         y[Q] += self.ffx * h;
+        // The work on the contact with the force at the step's end, as the body's update uses it.
+        y[W] += ff * vr * h;
     }
 }

@@ -1,0 +1,68 @@
+use super::super::tests::{issue_case, mean_after};
+use super::super::Transverse;
+use crate::interface::transverse::vr;
+use crate::scenes::Scene;
+
+/// Mean FFx over period `periods` of the issue's case with `solver` at `n` steps a period.
+fn fixed_step_mean(solver: &str, slip: &str, kt_factor: f64, n: f64, periods: u32) -> f64 {
+    let mut v = issue_case(solver, slip, kt_factor, 1e-10);
+    v.set(vr::STEPS_PER_PERIOD, n);
+    mean_after(&v, periods)
+}
+
+/// Oracle: dopri5 at rtol 1e-12 (its own error is near 1e-11). Halving the step divides the
+/// error by 4 under both slip laws (under the split law because steps end on the kinks of
+/// |v1| and |v2|).
+#[test]
+fn second_order_against_a_tight_dopri5_run() {
+    for slip in ["split", "total"] {
+        let reference = mean_after(&issue_case("dopri5", slip, 1.0, 1e-12), 10);
+        let error = |n: f64| fixed_step_mean("exponential", slip, 1.0, n, 10) / reference - 1.0;
+        let (e1, e2, e3) = (error(200.0), error(400.0), error(800.0));
+        for ratio in [e1 / e2, e2 / e3] {
+            assert!(
+                (3.5..4.6).contains(&ratio),
+                "{slip}: errors {e1:e} {e2:e} {e3:e}"
+            );
+        }
+    }
+}
+
+/// Oracle: radau5 at rtol 1e-8 (L-stable, kink-aware). At kt x 1000 the bristle relaxes at
+/// a = kt |v|/FC ~ 3e7 1/s: 200 steps a period (a h ~ 50) blow rk4 up, while the exact bristle
+/// update stays finite and within 1e-4 of the reference under both slip laws.
+#[test]
+fn stable_and_accurate_on_the_stiff_contact_where_rk4_blows_up() {
+    for slip in ["split", "total"] {
+        let mut rk4 = issue_case("rk4", slip, 1000.0, 1e-10);
+        rk4.set(vr::STEPS_PER_PERIOD, 200.0);
+        let mut scene = Transverse::new(&rk4, 0.0).unwrap();
+        let blew_up = (0..6).any(|_| scene.do_step(1.0 / 3000.0, &rk4).is_err());
+        assert!(
+            blew_up,
+            "{slip}: rk4 survived 200 steps a period at kt x 1000"
+        );
+
+        let reference = mean_after(&issue_case("radau5", slip, 1000.0, 1e-8), 6);
+        let mean = fixed_step_mean("exponential", slip, 1000.0, 200.0, 6);
+        assert!(
+            (mean / reference - 1.0).abs() < 1e-4,
+            "{slip}: {mean} vs {reference}"
+        );
+    }
+}
+
+/// save/restore in the middle of a run continues it exactly.
+#[test]
+fn restore_continues_identically() {
+    let v = issue_case("exponential", "split", 1.0, 1e-10);
+    let mut a = Transverse::new(&v, 0.0).unwrap();
+    a.do_step(1e-4, &v).unwrap();
+    let saved = a.save();
+    a.do_step(1e-4, &v).unwrap();
+    let mut b = Transverse::new(&v, 0.0).unwrap();
+    b.restore(&saved).unwrap();
+    b.do_step(1e-4, &v).unwrap();
+    assert_eq!(a.forces(), b.forces());
+    assert_eq!(a.mean_ffx(), b.mean_ffx());
+}
