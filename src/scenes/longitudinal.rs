@@ -248,11 +248,11 @@ impl Scene for Longitudinal {
         }
         let t_end = self.t + h;
         let mut t = self.t;
-        let steps_at_start = self.work.steps;
+        let at_start = self.work;
         while t < t_end {
             let next = self.substep_end(t, t_end);
             self.substep(t, next)?;
-            within_step_budget(&self.work, steps_at_start, next)?;
+            within_step_budget(&self.work, &at_start, next)?;
             t = next;
         }
         self.t = t_end;

@@ -265,9 +265,9 @@ impl Oscillator {
             Core::Regularized(equations, solver) => {
                 equations.held = held;
                 let mut largest = self.state.u.abs();
-                let steps_at_start = self.work.steps;
+                let at_start = self.work;
                 while self.state.t < t_end {
-                    within_step_budget(&self.work, steps_at_start, self.state.t)?;
+                    within_step_budget(&self.work, &at_start, self.state.t)?;
                     let t0 = self.state.t;
                     let t1 = if t_end - t0 <= self.max_substep * (1.0 + 1e-9) {
                         t_end
@@ -309,9 +309,9 @@ impl Oscillator {
         }
         self.held = held;
         let t_end = self.state.t + h;
-        let steps_at_start = self.work.steps;
+        let at_start = self.work;
         while self.state.t < t_end {
-            within_step_budget(&self.work, steps_at_start, self.state.t)?;
+            within_step_budget(&self.work, &at_start, self.state.t)?;
             let boundary = self.amplitude.next_boundary();
             // A boundary within round-off of t_end closes its period at t_end (PeriodMax::add).
             let segment_end = if boundary < t_end - 1e-9 * self.amplitude.period {

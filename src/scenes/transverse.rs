@@ -398,9 +398,9 @@ impl Scene for Transverse {
         }
         let t_end = self.t + h;
         let mut t = self.t;
-        let steps_at_start = self.work.steps;
+        let at_start = self.work;
         while t < t_end {
-            within_step_budget(&self.work, steps_at_start, t)?;
+            within_step_budget(&self.work, &at_start, t)?;
             let boundary = self.mean.next_boundary();
             // A boundary within round-off of t_end is t_end (the master's clock drifts).
             let next = if boundary < t_end - 1e-9 / self.p.f {

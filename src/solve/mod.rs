@@ -42,17 +42,27 @@ pub trait Integrator {
 }
 
 /// The most steps (sub-steps of every kind, as counted in [`Work::steps`]) one communication
-/// step may take: about a second of CPU for the costliest solver here. Past it the scene stops
-/// with a message and the FMU returns fmi2Discard, instead of running for minutes when the
-/// parameters (a microgram mass, a terahertz vibration) or a very long step ask for millions.
+/// step may take. Past it the scene stops with a message and the FMU returns fmi2Discard,
+/// instead of running for minutes when the parameters (a microgram mass, a terahertz vibration)
+/// or a very long step ask for millions.
 pub const MAX_STEPS_PER_DO_STEP: u64 = 2_000_000;
 
-/// Errs once `work` has taken more than [`MAX_STEPS_PER_DO_STEP`] steps since it counted
-/// `steps_at_start`; `t` is where the step stopped.
-pub fn within_step_budget(work: &Work, steps_at_start: u64, t: f64) -> Result<(), String> {
-    if work.steps.saturating_sub(steps_at_start) > MAX_STEPS_PER_DO_STEP {
+/// The most right-hand-side evaluations one communication step may take: the unit of work all
+/// solvers share, so an implicit step (many evaluations for its Jacobian and Newton iterations)
+/// counts for more than an explicit one. With the step limit, this keeps a refused doStep to
+/// about a second for the explicit solvers and a few seconds for radau5.
+pub const MAX_RHS_EVALUATIONS_PER_DO_STEP: u64 = 10_000_000;
+
+/// Errs once `work` has gone past either limit since it stood at `at_start`; `t` is where the
+/// step stopped.
+pub fn within_step_budget(work: &Work, at_start: &Work, t: f64) -> Result<(), String> {
+    let steps = work.steps.saturating_sub(at_start.steps);
+    let evaluations = work
+        .rhs_evaluations
+        .saturating_sub(at_start.rhs_evaluations);
+    if steps > MAX_STEPS_PER_DO_STEP || evaluations > MAX_RHS_EVALUATIONS_PER_DO_STEP {
         Err(format!(
-            "more than {MAX_STEPS_PER_DO_STEP} integration steps in one communication step (stopped at t = {t}): use a shorter communication step, or a tolerance or parameters that make the problem less stiff"
+            "more than {MAX_STEPS_PER_DO_STEP} integration steps or {MAX_RHS_EVALUATIONS_PER_DO_STEP} right-hand-side evaluations in one communication step (stopped at t = {t}): use a shorter communication step, or a tolerance or parameters that make the problem less stiff"
         ))
     } else {
         Ok(())

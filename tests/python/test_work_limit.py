@@ -1,7 +1,7 @@
 """A communication step that would need millions of integration steps is refused, not run.
 
-Oracle: the FMU's documented work limit (src/solve/mod.rs, MAX_STEPS_PER_DO_STEP = 2e6 steps per
-doStep). In-range parameters can ask for absurd work (a terahertz vibration, a picogram body, a
+Oracle: the FMU's documented work limit (src/solve/mod.rs: at most 2e6 integration steps and 1e7
+right-hand-side evaluations per doStep). In-range parameters can ask for absurd work (a terahertz vibration, a picogram body, a
 1e8 rad/s forcing); without the limit doStep ran for minutes. With it, the step ends with
 fmi2Discard, a message saying what to change, lastSuccessfulTime at the step's start, and the
 instance still answers.
