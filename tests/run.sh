@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Runs every test: formatting and lints, the Rust unit and integration tests (one of which loads
-# the packed FMU through the `fmi` crate), then the fmpy tests against fmu-out/*.fmu.
-# Installs what it needs: libclang-dev (bindgen, for the `fmi` crate) and a .venv with fmpy.
+# the packed FMU through the `fmi` crate), the call-sequence fuzzer once more under valgrind's
+# memcheck, then the fmpy tests against fmu-out/*.fmu.
+# Installs what it needs: libclang-dev (bindgen, for the `fmi` crate), valgrind, and a .venv with
+# fmpy.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -27,5 +29,13 @@ cargo build --release
 target/release/friction-fmu build
 echo "== cargo test"
 cargo test --release
+echo "== fuzzing under valgrind memcheck (invalid reads and writes, use after free)"
+if ! command -v valgrind >/dev/null; then
+    SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+    $SUDO apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq valgrind >/dev/null
+fi
+FUZZ_BIN=$(cargo test --release --test fuzz_calls --no-run 2>&1 | grep -o 'target/release/deps/fuzz_calls-[0-9a-f]*' | head -1)
+FUZZ_SEQUENCES=20000 valgrind --error-exitcode=9 --leak-check=no -q "$FUZZ_BIN" random_call_sequences
 echo "== pytest (fmpy)"
 .venv/bin/python -m pytest tests/python
