@@ -197,42 +197,14 @@ impl Dopri5 {
         s1: f64,
     ) -> f64 {
         let n = ode.dim();
-        let (mut a, mut fa, mut b, mut fb) = (0.0, s0, 1.0, s1);
-        let mut side = 0;
         let mut state = [0.0; MAX_DIM];
         let mut sw = [0.0; MAX_SWITCHES];
-        for _ in 0..100 {
-            if b - a <= 1e-15 {
-                break;
-            }
-            let mut m = (a * fb - b * fa) / (fb - fa);
-            if !(m > a && m < b) {
-                m = 0.5 * (a + b);
-            }
+        let switch_at = |m: f64| {
             Self::dense(n, y, tr, h, m, &mut state);
             ode.switches(t + m * h, &state[..n], &mut sw);
-            let fm = sw[i];
-            if fm == 0.0 {
-                return m;
-            }
-            if (fm > 0.0) == (fa > 0.0) {
-                a = m;
-                fa = fm;
-                if side == -1 {
-                    fb *= 0.5;
-                }
-                side = -1;
-            } else {
-                b = m;
-                fb = fm;
-                if side == 1 {
-                    fa *= 0.5;
-                }
-                side = 1;
-            }
-        }
-        // The far end of the bracket, so the kink is inside the step just taken.
-        b
+            sw[i]
+        };
+        super::root::first_zero(switch_at, s0, s1, 1e-15, 100)
     }
 
     /// Integrates `ode` from `t0` to `t1`, ending steps on the sign changes of its switching

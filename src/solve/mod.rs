@@ -9,6 +9,7 @@ pub mod dopri;
 pub mod expm;
 pub mod radau;
 pub mod rk4;
+pub mod root;
 
 /// The largest state vector any scene integrates (including quadrature states such as the
 /// running integral of a force or of its power).

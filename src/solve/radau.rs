@@ -367,40 +367,13 @@ fn locate(
     s0: f64,
     s1: f64,
 ) -> f64 {
-    let (mut a, mut fa, mut b, mut fb) = (0.0, s0, 1.0, s1);
-    let mut side = 0;
     let mut sw = [0.0; MAX_SWITCHES];
-    for _ in 0..60 {
-        if b - a <= 1e-12 {
-            break;
-        }
-        let mut m = (a * fb - b * fa) / (fb - fa);
-        if !(m > a && m < b) {
-            m = 0.5 * (a + b);
-        }
+    let switch_at = |m: f64| {
         let state = collocation(tab, n, y, z, m);
         ode.switches(t + m * h, &state[..n], &mut sw);
-        let fm = sw[i];
-        if fm == 0.0 {
-            return m;
-        }
-        if (fm > 0.0) == (fa > 0.0) {
-            a = m;
-            fa = fm;
-            if side == -1 {
-                fb *= 0.5;
-            }
-            side = -1;
-        } else {
-            b = m;
-            fb = fm;
-            if side == 1 {
-                fa *= 0.5;
-            }
-            side = 1;
-        }
-    }
-    b
+        sw[i]
+    };
+    super::root::first_zero(switch_at, s0, s1, 1e-12, 60)
 }
 
 impl Radau5 {
