@@ -118,19 +118,21 @@ fn two_phase_converges_to_split_law_with_first_order() {
     assert!((2.6..3.4).contains(&ratio), "{e1} {e2} ratio {ratio}");
 }
 
-/// save/restore reproduces the run exactly.
+/// save/restore in the middle of a run continues it exactly, for every solver.
 #[test]
 fn restore_continues_identically() {
-    let v = values("dopri5", "split");
-    let mut a = Transverse::new(&v, 0.0).unwrap();
-    a.do_step(1e-4, &v).unwrap();
-    let saved = a.save();
-    a.do_step(1e-4, &v).unwrap();
-    let mut b = Transverse::new(&v, 0.0).unwrap();
-    b.restore(&saved).unwrap();
-    b.do_step(1e-4, &v).unwrap();
-    assert_eq!(a.forces(), b.forces());
-    assert_eq!(a.mean_ffx(), b.mean_ffx());
+    for solver in ["dopri5", "rk4", "two_phase", "radau5", "exponential"] {
+        let v = values(solver, "split");
+        let mut a = Transverse::new(&v, 0.0).unwrap();
+        a.do_step(1e-4, &v).unwrap();
+        let saved = a.save();
+        a.do_step(1e-4, &v).unwrap();
+        let mut b = Transverse::new(&v, 0.0).unwrap();
+        b.restore(&saved).unwrap();
+        b.do_step(1e-4, &v).unwrap();
+        assert_eq!(a.forces(), b.forces(), "{solver}");
+        assert_eq!(a.mean_ffx(), b.mean_ffx(), "{solver}");
+    }
 }
 
 pub(super) fn issue_case(solver: &str, slip: &str, kt_factor: f64, tolerance: f64) -> ValueSet {

@@ -51,18 +51,3 @@ fn stable_and_accurate_on_the_stiff_contact_where_rk4_blows_up() {
         );
     }
 }
-
-/// save/restore in the middle of a run continues it exactly.
-#[test]
-fn restore_continues_identically() {
-    let v = issue_case("exponential", "split", 1.0, 1e-10);
-    let mut a = Transverse::new(&v, 0.0).unwrap();
-    a.do_step(1e-4, &v).unwrap();
-    let saved = a.save();
-    a.do_step(1e-4, &v).unwrap();
-    let mut b = Transverse::new(&v, 0.0).unwrap();
-    b.restore(&saved).unwrap();
-    b.do_step(1e-4, &v).unwrap();
-    assert_eq!(a.forces(), b.forces());
-    assert_eq!(a.mean_ffx(), b.mean_ffx());
-}
