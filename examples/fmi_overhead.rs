@@ -9,7 +9,7 @@
 use friction_fmu::fmi2::driver::Instance;
 use friction_fmu::fmi2::ffi::Status;
 use friction_fmu::interface::values::ValueSet;
-use friction_fmu::scenes::{Model, MODELS};
+use friction_fmu::scenes::{Model, Scope, MODELS};
 use std::time::Instant;
 
 const STEP: f64 = 1e-5;
@@ -56,7 +56,7 @@ fn measure(model: &Model, seconds: f64) -> Result<(), String> {
     })?;
     let direct = |h: f64| {
         best(|| {
-            let mut scene = (model.build)(&values, 0.0)?;
+            let mut scene = (model.build)(&values, 0.0, &Scope::full())?;
             let n = (seconds / h).round() as u64;
             for k in 0..n {
                 scene.do_step((k + 1) as f64 * h - scene.time(), &values)?;

@@ -8,7 +8,7 @@ use super::ffi::Status;
 use super::logger::{Logger, CATEGORY_CALLS, CATEGORY_ERROR, CATEGORY_WARNING};
 use crate::interface::values::{check_value, ValueSet};
 use crate::interface::variable::{Causality, Kind, Variability, Variable, LOG_CATEGORIES};
-use crate::scenes::{Model, Scene};
+use crate::scenes::{Model, Scene, Scope};
 
 /// Where an instance is in its life (FMI 2.0 co-simulation state machine).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -81,6 +81,8 @@ pub struct Instance {
     log_calls: bool,
     pub phase: Phase,
     pub values: ValueSet,
+    /// What the interface hides (nothing for a full model).
+    pub scope: Scope,
     pub scene: Option<Box<dyn Scene>>,
     pub start_time: f64,
     pub stop_time: Option<f64>,
@@ -106,6 +108,7 @@ impl Instance {
             log_calls,
             phase: Instantiated,
             values: ValueSet::start(model.table),
+            scope: Scope::full(),
             scene: None,
             start_time: 0.0,
             stop_time: None,
@@ -207,7 +210,7 @@ impl Instance {
         if let Err(status) = self.check_phase("fmi2ExitInitializationMode", &[InitializationMode]) {
             return status;
         }
-        match (self.model.build)(&self.values, self.start_time) {
+        match (self.model.build)(&self.values, self.start_time, &self.scope) {
             Ok(scene) => {
                 self.scene = Some(scene);
                 self.time = self.start_time;
@@ -266,7 +269,7 @@ impl Instance {
             scene.write_outputs(&mut self.values);
             return Ok(());
         }
-        match (self.model.build)(&self.values, self.start_time) {
+        match (self.model.build)(&self.values, self.start_time, &self.scope) {
             Ok(scene) => {
                 scene.write_outputs(&mut self.values);
                 Ok(())

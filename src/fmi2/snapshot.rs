@@ -76,7 +76,7 @@ impl Snapshot {
         let scene = match &self.scene {
             None => None,
             Some(state) => {
-                let mut scene = (instance.model.build)(&values, self.start_time)?;
+                let mut scene = (instance.model.build)(&values, self.start_time, &instance.scope)?;
                 scene.restore(state)?;
                 Some(scene)
             }

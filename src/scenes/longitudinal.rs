@@ -61,7 +61,11 @@ fn velocity_at(source: Velocity, f: f64, held: f64, t: f64) -> f64 {
     }
 }
 
-pub fn build(values: &ValueSet, start_time: f64) -> Result<Box<dyn Scene>, String> {
+pub fn build(
+    values: &ValueSet,
+    start_time: f64,
+    _scope: &super::Scope,
+) -> Result<Box<dyn Scene>, String> {
     Ok(Box::new(Longitudinal::new(values, start_time)?))
 }
 

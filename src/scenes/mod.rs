@@ -4,10 +4,12 @@
 pub mod longitudinal;
 pub mod oscillator;
 pub mod period_mean;
+pub mod scope;
 pub mod transverse;
 
 use crate::interface::values::ValueSet;
 use crate::interface::variable::ModelTable;
+pub use scope::Scope;
 
 /// A model that can be advanced in time. Errors are messages for the user: what was wrong and
 /// what was expected.
@@ -29,8 +31,10 @@ pub trait Scene: Send {
     fn restore(&mut self, state: &[f64]) -> Result<(), String>;
 }
 
-/// Builds a scene at `start_time` from parameter values, refusing inconsistent ones.
-pub type Builder = fn(values: &ValueSet, start_time: f64) -> Result<Box<dyn Scene>, String>;
+/// Builds a scene at `start_time` from parameter values, refusing inconsistent ones; `scope` says
+/// what the interface hides, so the scene may skip what nobody can see or change.
+pub type Builder =
+    fn(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Box<dyn Scene>, String>;
 
 /// A model this crate exports: its interface and how to build it.
 pub struct Model {

@@ -142,7 +142,11 @@ pub struct Oscillator {
     pub work: Work,
 }
 
-pub fn build(values: &ValueSet, start_time: f64) -> Result<Box<dyn Scene>, String> {
+pub fn build(
+    values: &ValueSet,
+    start_time: f64,
+    _scope: &super::Scope,
+) -> Result<Box<dyn Scene>, String> {
     Ok(Box::new(Oscillator::new(values, start_time)?))
 }
 

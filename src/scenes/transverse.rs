@@ -174,7 +174,11 @@ pub struct Transverse {
     pub work: Work,
 }
 
-pub fn build(values: &ValueSet, start_time: f64) -> Result<Box<dyn Scene>, String> {
+pub fn build(
+    values: &ValueSet,
+    start_time: f64,
+    _scope: &super::Scope,
+) -> Result<Box<dyn Scene>, String> {
     Ok(Box::new(Transverse::new(values, start_time)?))
 }
 
