@@ -58,6 +58,8 @@ struct CoSimulation {
     variable_step: bool,
     #[serde(rename = "@canInterpolateInputs")]
     interpolate_inputs: bool,
+    #[serde(rename = "@maxOutputDerivativeOrder")]
+    max_output_derivative_order: u32,
     #[serde(rename = "@canRunAsynchronuously")]
     asynchronous: bool,
     #[serde(rename = "@canBeInstantiatedOnlyOncePerProcess")]
@@ -372,7 +374,8 @@ fn model_description(table: &ModelTable, guid: &str) -> ModelDescription {
             model_identifier: table.model_identifier,
             needs_execution_tool: false,
             variable_step: true,
-            interpolate_inputs: false,
+            interpolate_inputs: interface::interpolates_inputs(table),
+            max_output_derivative_order: interface::interpolates_inputs(table).into(),
             asynchronous: false,
             once_per_process: false,
             no_memory_functions: true,

@@ -4,7 +4,7 @@
 //! refusal instead of a crash), turn pointers into slices, dispatch to [`Instance`], return.
 
 use super::ffi::*;
-use super::instance::{Instance, Phase, READABLE, STATE_PHASES, WRITABLE};
+use super::instance::{Instance, Phase, READABLE, STATE_PHASES};
 use super::logger::Logger;
 use super::snapshot::Snapshot;
 use crate::interface::variable::Kind;
@@ -665,47 +665,45 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
 }
 
 /// # Safety
-/// `c` from fmi2Instantiate.
+/// Arrays of `nvr` elements, as the FMI 2.0 standard defines them.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     c: Component,
-    _vr: *const ValueReference,
-    _nvr: usize,
-    _order: *const Integer,
-    _value: *const Real,
+    vr: *const ValueReference,
+    nvr: usize,
+    order: *const Integer,
+    value: *const Real,
 ) -> Status {
     with_instance(c, |instance| {
-        if let Err(status) = instance.check_phase("fmi2SetRealInputDerivatives", WRITABLE) {
-            return status;
-        }
-        instance.error("fmi2SetRealInputDerivatives is not supported (canInterpolateInputs = false): inputs are held over each step")
+        const FUNCTION: &str = "fmi2SetRealInputDerivatives";
+        let (Some(vrs), Some(orders), Some(values)) =
+            (slice(vr, nvr), slice(order, nvr), slice(value, nvr))
+        else {
+            return null_argument(instance, FUNCTION, "vr, order or value");
+        };
+        instance.trace(|| format!("{FUNCTION}(vr = {vrs:?}, order = {orders:?})"));
+        instance.set_input_derivatives(vrs, orders, values)
     })
 }
 
 /// # Safety
-/// `c` from fmi2Instantiate.
+/// Arrays of `nvr` elements, as the FMI 2.0 standard defines them.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
     c: Component,
-    _vr: *const ValueReference,
-    _nvr: usize,
-    _order: *const Integer,
-    _value: *mut Real,
+    vr: *const ValueReference,
+    nvr: usize,
+    order: *const Integer,
+    value: *mut Real,
 ) -> Status {
     with_instance(c, |instance| {
-        if let Err(status) = instance.check_phase(
-            "fmi2GetRealOutputDerivatives",
-            &[
-                Phase::StepComplete,
-                Phase::StepFailed,
-                Phase::Terminated,
-                Phase::Error,
-            ],
-        ) {
-            return status;
-        }
-        instance
-            .error("fmi2GetRealOutputDerivatives is not supported (MaxOutputDerivativeOrder = 0)")
+        const FUNCTION: &str = "fmi2GetRealOutputDerivatives";
+        let (Some(vrs), Some(orders), Some(out)) =
+            (slice(vr, nvr), slice(order, nvr), slice_mut(value, nvr))
+        else {
+            return null_argument(instance, FUNCTION, "vr, order or value");
+        };
+        instance.get_output_derivatives(vrs, orders, out)
     })
 }
 

@@ -6,9 +6,10 @@
 
 use super::ffi::Status;
 use super::logger::{Logger, CATEGORY_CALLS, CATEGORY_ERROR, CATEGORY_WARNING};
+use crate::interface::interpolates_inputs;
 use crate::interface::values::{check_value, ValueSet};
 use crate::interface::variable::{Causality, Kind, Variability, Variable, LOG_CATEGORIES};
-use crate::scenes::{Model, Scene, Scope};
+use crate::scenes::{Model, Scene, Scope, HELD_INPUTS};
 
 /// Where an instance is in its life (FMI 2.0 co-simulation state machine).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -90,6 +91,9 @@ pub struct Instance {
     pub last_successful_time: f64,
     /// Addresses of the FMU states this instance handed out and has not freed.
     pub snapshots: Vec<usize>,
+    /// Input derivatives set before the scene exists (handed to it when it is built); once it
+    /// exists they go straight to it. Capacity for every input, so setting never allocates.
+    pending_derivatives: Vec<(u32, f64)>,
 }
 
 impl Instance {
@@ -115,6 +119,14 @@ impl Instance {
             time: 0.0,
             last_successful_time: 0.0,
             snapshots: Vec::new(),
+            pending_derivatives: Vec::with_capacity(
+                model
+                    .table
+                    .variables
+                    .iter()
+                    .filter(|v| v.causality == Causality::Input)
+                    .count(),
+            ),
         }
     }
 
@@ -211,7 +223,15 @@ impl Instance {
             return status;
         }
         match (self.model.build)(&self.values, self.start_time, &self.scope) {
-            Ok(scene) => {
+            Ok(mut scene) => {
+                let handed = self
+                    .pending_derivatives
+                    .iter()
+                    .try_for_each(|&(vr, derivative)| scene.set_input_derivative(vr, derivative));
+                self.pending_derivatives.clear();
+                if let Err(message) = handed {
+                    return self.error(&format!("fmi2ExitInitializationMode: {message}"));
+                }
                 self.scene = Some(scene);
                 self.time = self.start_time;
                 self.last_successful_time = self.start_time;
@@ -239,6 +259,7 @@ impl Instance {
         self.stop_time = None;
         self.time = 0.0;
         self.last_successful_time = 0.0;
+        self.pending_derivatives.clear();
         Status::Ok
     }
 
@@ -370,6 +391,125 @@ impl Instance {
         }
         for (i, &vr) in value_references.iter().enumerate() {
             self.values.set(vr, value_at(i));
+            // An input set again without a derivative is held (FMI 2.0, 4.2.1, leaves this
+            // open; holding is what a master that sets no derivative expects).
+            if interpolates_inputs(self.model.table)
+                && self.model.table.variable(vr).map(|v| v.causality) == Some(Causality::Input)
+            {
+                self.pending_derivatives.retain(|&(r, _)| r != vr);
+                if let Some(scene) = self.scene.as_mut() {
+                    // Accepted when the derivative was: this model takes them for its inputs.
+                    let _ = scene.set_input_derivative(vr, 0.0);
+                }
+            }
+        }
+        Status::Ok
+    }
+
+    /// fmi2SetRealInputDerivatives: first derivatives of inputs for the next fmi2DoStep only.
+    /// All are checked before any is stored.
+    pub fn set_input_derivatives(
+        &mut self,
+        value_references: &[u32],
+        orders: &[i32],
+        derivatives: &[f64],
+    ) -> Status {
+        const FUNCTION: &str = "fmi2SetRealInputDerivatives";
+        if let Err(status) = self.check_phase(FUNCTION, WRITABLE) {
+            return status;
+        }
+        if !interpolates_inputs(self.model.table) {
+            return self.error(&format!("{FUNCTION}: {HELD_INPUTS}"));
+        }
+        for ((&vr, &order), &derivative) in value_references.iter().zip(orders).zip(derivatives) {
+            let var = match self.variable(FUNCTION, vr, |k| matches!(k, Kind::Real { .. }), "Real")
+            {
+                Ok(var) => var,
+                Err(status) => return status,
+            };
+            if var.causality != Causality::Input {
+                return self.error(&format!(
+                    "{FUNCTION}: {} is not an input: only inputs take derivatives",
+                    var.name
+                ));
+            }
+            if order != 1 {
+                return self.error(&format!(
+                    "{FUNCTION}: order {order} for {}: only first derivatives (order 1) are supported",
+                    var.name
+                ));
+            }
+            if !derivative.is_finite() {
+                return self.error(&format!(
+                    "{FUNCTION}: the derivative of {} is {derivative}: expected a finite number",
+                    var.name
+                ));
+            }
+        }
+        for (&vr, &derivative) in value_references.iter().zip(derivatives) {
+            match self.scene.as_mut() {
+                Some(scene) => {
+                    if let Err(message) = scene.set_input_derivative(vr, derivative) {
+                        return self.error(&format!("{FUNCTION}: {message}"));
+                    }
+                }
+                None => {
+                    self.pending_derivatives.retain(|&(r, _)| r != vr);
+                    self.pending_derivatives.push((vr, derivative));
+                }
+            }
+        }
+        Status::Ok
+    }
+
+    /// fmi2GetRealOutputDerivatives: first derivatives of outputs at the current time, where
+    /// the scene has them exactly.
+    pub fn get_output_derivatives(
+        &mut self,
+        value_references: &[u32],
+        orders: &[i32],
+        out: &mut [f64],
+    ) -> Status {
+        const FUNCTION: &str = "fmi2GetRealOutputDerivatives";
+        if let Err(status) =
+            self.check_phase(FUNCTION, &[StepComplete, StepFailed, Terminated, Error])
+        {
+            return status;
+        }
+        let max_order = i32::from(interpolates_inputs(self.model.table));
+        for (i, (&vr, &order)) in value_references.iter().zip(orders).enumerate() {
+            let var = match self.variable(FUNCTION, vr, |k| matches!(k, Kind::Real { .. }), "Real")
+            {
+                Ok(var) => var,
+                Err(status) => return status,
+            };
+            if var.causality != Causality::Output {
+                return self.error(&format!(
+                    "{FUNCTION}: {} is not an output: only outputs have derivatives to get",
+                    var.name
+                ));
+            }
+            if order < 1 || order > max_order {
+                return self.error(&format!(
+                    "{FUNCTION}: order {order} for {}: expected 1 <= order <= maxOutputDerivativeOrder = {max_order}",
+                    var.name
+                ));
+            }
+            let Some(scene) = self.scene.as_ref() else {
+                return self.error(&format!(
+                    "{FUNCTION}: no scene: fmi2ExitInitializationMode has not succeeded"
+                ));
+            };
+            match scene.output_derivative(vr, &self.values) {
+                Ok(x) if x.is_finite() => out[i] = x,
+                Ok(x) => {
+                    return self.error(&format!(
+                    "{FUNCTION}: the derivative of {} is {x} at t = {}: expected a finite value",
+                    var.name, self.time
+                ))
+                }
+                Err(message) => return self.error(&format!("{FUNCTION}: {}: {message}", var.name)),
+            }
         }
         Status::Ok
     }

@@ -3,6 +3,7 @@
 //! `build.rs` includes this module too (with `#[path]`) to write modelDescription.xml, so nothing
 //! here may refer to the rest of the crate.
 
+pub mod drive;
 pub mod longitudinal;
 pub mod oscillator;
 pub mod table;
@@ -11,8 +12,22 @@ pub mod values;
 pub mod variable;
 
 /// Every model this crate exports, in the order the CLI builds them.
-pub const MODELS: &[&variable::ModelTable] =
-    &[&longitudinal::TABLE, &transverse::TABLE, &oscillator::TABLE];
+pub const MODELS: &[&variable::ModelTable] = &[
+    &longitudinal::TABLE,
+    &transverse::TABLE,
+    &oscillator::TABLE,
+    &drive::TABLE,
+];
+
+/// Models whose inputs may move linearly over a communication step (fmi2SetRealInputDerivatives,
+/// first order) and that give first derivatives of some outputs: modelDescription.xml declares
+/// canInterpolateInputs and maxOutputDerivativeOrder = 1 for them. The scenes' own
+/// `set_input_derivative` is the runtime side of the same promise.
+pub const INTERPOLATING: &[&str] = &["TransverseFriction", "DriveTrain"];
+
+pub fn interpolates_inputs(table: &variable::ModelTable) -> bool {
+    INTERPOLATING.contains(&table.model_identifier)
+}
 
 #[cfg(test)]
 mod tests {

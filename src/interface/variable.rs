@@ -208,6 +208,20 @@ pub const UNITS: &[Unit] = &[
         rad: 1,
     },
     Unit {
+        name: "kg.m2",
+        kg: 1,
+        m: 2,
+        s: 0,
+        rad: 0,
+    },
+    Unit {
+        name: "N.m.s/rad",
+        kg: 1,
+        m: 2,
+        s: -1,
+        rad: -1,
+    },
+    Unit {
         name: "%",
         kg: 0,
         m: 0,

@@ -8,6 +8,7 @@ fn equations(model_identifier: &str) -> &'static str {
         "LongitudinalFriction" => include_str!("docs/LongitudinalFriction.html"),
         "TransverseFriction" => include_str!("docs/TransverseFriction.html"),
         "DryFrictionOscillator" => include_str!("docs/DryFrictionOscillator.html"),
+        "DriveTrain" => include_str!("docs/DriveTrain.html"),
         _ => "",
     }
 }

@@ -125,6 +125,18 @@ const OSCILLATOR: &[Extreme] = &[
     ),
 ];
 
+/// DriveTrain at its defaults (10 ms mechanical, 0.2 ms electrical time constant) from rest;
+/// every extreme runs through, the scheme being exact at any step.
+const DRIVE: &[Extreme] = &[
+    ("paper", &[], 1e-4, 500),
+    ("L 1e-9", &[("L", Real(1e-9))], 1e-4, 500),
+    ("J 1e-12", &[("J", Real(1e-12))], 1e-4, 500),
+    ("efficiency 1e-3", &[("efficiency", Real(1e-3))], 1e-4, 500),
+    ("step 1e-8", &[], 1e-8, 2000),
+    ("step 1 s", &[], 1.0, 20),
+    ("1e6 s", &[], 1e4, 100),
+];
+
 /// Parameters every case of a scene starts from.
 fn base(model: &str) -> &'static [(&'static str, Value)] {
     match model {
@@ -152,10 +164,11 @@ pub fn solvers(model: &str) -> Vec<&'static str> {
 /// Coulomb law (closed form) at each of their extremes.
 pub fn cases() -> Vec<Case> {
     let mut cases = Vec::new();
-    let scenes: [(&str, &[Extreme]); 3] = [
+    let scenes: [(&str, &[Extreme]); 4] = [
         ("LongitudinalFriction", LONGITUDINAL),
         ("TransverseFriction", TRANSVERSE),
         ("DryFrictionOscillator", OSCILLATOR),
+        ("DriveTrain", DRIVE),
     ];
     for (model, extremes) in scenes {
         let mut menu: Vec<(&str, Option<(&str, &str)>)> =

@@ -1,6 +1,7 @@
 //! Scenes: one file per model. A scene owns its state, its equations and its outputs; it reads
 //! parameters and inputs from a [`ValueSet`] and knows nothing of FMI.
 
+pub mod drive;
 pub mod longitudinal;
 pub mod oscillator;
 pub mod period_mean;
@@ -29,7 +30,30 @@ pub trait Scene: Send {
 
     /// Restores a state written by [`Scene::save`] of a scene built from the same values.
     fn restore(&mut self, state: &[f64]) -> Result<(), String>;
+
+    /// Takes the first time derivative of an input for the coming step only: the input then
+    /// moves as `value + derivative (t - t_step)` over it. Scenes that hold their inputs over
+    /// each step refuse (the default).
+    fn set_input_derivative(
+        &mut self,
+        value_reference: u32,
+        derivative: f64,
+    ) -> Result<(), String> {
+        let _ = (value_reference, derivative);
+        Err(HELD_INPUTS.to_string())
+    }
+
+    /// The first time derivative of an output now, where it is exact and cheap (the inputs'
+    /// current values are in `values`); refuses the others (the default: all).
+    fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {
+        let _ = (value_reference, values);
+        Err("this model gives no output derivatives (maxOutputDerivativeOrder = 0)".to_string())
+    }
 }
+
+/// Why a scene without input derivatives refuses one.
+pub const HELD_INPUTS: &str =
+    "this model holds its inputs over each step (canInterpolateInputs = false)";
 
 /// Builds a scene at `start_time` from parameter values, refusing inconsistent ones; `scope` says
 /// what the interface hides, so the scene may skip what nobody can see or change.
@@ -54,6 +78,10 @@ pub const MODELS: &[Model] = &[
     Model {
         table: &crate::interface::oscillator::TABLE,
         build: oscillator::build,
+    },
+    Model {
+        table: &crate::interface::drive::TABLE,
+        build: drive::build,
     },
 ];
 

@@ -89,10 +89,25 @@ impl Params {
     }
 }
 
-/// The ODE of SPEC.md with the drive velocity held at `vd`.
+/// The drive velocity over a communication step from `t0`: held at `v0`, or moving at `rate`
+/// when the master gave the input's derivative for the step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DriveVelocity {
+    pub v0: f64,
+    pub rate: f64,
+    pub t0: f64,
+}
+
+impl DriveVelocity {
+    pub fn at(&self, t: f64) -> f64 {
+        self.v0 + self.rate * (t - self.t0)
+    }
+}
+
+/// The ODE of SPEC.md with the drive velocity `vd(t)`.
 struct Equations<'a> {
     p: &'a Params,
-    vd: f64,
+    vd: DriveVelocity,
 }
 
 impl Ode for Equations<'_> {
@@ -103,16 +118,17 @@ impl Ode for Equations<'_> {
     fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let p = self.p;
         let c = p.contact(t, y);
+        let vd = self.vd.at(t);
         if p.held {
             dydt[X..=VY].fill(0.0);
-            dydt[LAMBDA] = self.vd;
+            dydt[LAMBDA] = vd;
         } else {
-            let fd = p.drive_force(y, self.vd);
+            let fd = p.drive_force(y, vd);
             dydt[X] = y[VX];
             dydt[VX] = (fd - c.ffx()) / p.m;
             dydt[Y] = y[VY];
             dydt[VY] = c.ffy() / p.m;
-            dydt[LAMBDA] = self.vd - y[VX];
+            dydt[LAMBDA] = vd - y[VX];
         }
         dydt[ZX] = c.zdot.x;
         dydt[ZY] = c.zdot.y;
@@ -170,6 +186,8 @@ pub struct Transverse {
     y: [f64; MAX_DIM],
     /// The drive velocity held over the current step (input source).
     vd_held: f64,
+    /// vd_in's derivative for the coming step only (zero: held).
+    vd_rate: f64,
     mean: PeriodMean,
     pub work: Work,
 }
@@ -316,6 +334,7 @@ impl Transverse {
             t: start_time,
             y,
             vd_held: vd_start,
+            vd_rate: 0.0,
             mean: PeriodMean::new(start_time, 1.0 / f),
             work: Work::default(),
         })
@@ -363,8 +382,7 @@ impl Transverse {
     }
 
     /// Advances over one sub-step `[t0, t1]` that lies within one period.
-    fn substep(&mut self, t0: f64, t1: f64) -> Result<(), String> {
-        let vd = self.vd();
+    fn substep(&mut self, t0: f64, t1: f64, vd: DriveVelocity) -> Result<(), String> {
         self.y[Q] = 0.0;
         let eq = Equations { p: &self.p, vd };
         match &mut self.solver {
@@ -393,6 +411,8 @@ impl Scene for Transverse {
         if !(h > 0.0 && h.is_finite()) {
             return Err(format!("communication step {h} s: expected a step > 0"));
         }
+        // A derivative applies to this step only, whatever its outcome.
+        let rate = std::mem::take(&mut self.vd_rate);
         if self.drive == Drive::Input {
             let v = values.real(vr::VD_IN);
             if !v.is_finite() {
@@ -400,6 +420,15 @@ impl Scene for Transverse {
             }
             self.vd_held = v;
         }
+        let vd = DriveVelocity {
+            v0: self.vd(),
+            rate: if self.drive == Drive::Input {
+                rate
+            } else {
+                0.0
+            },
+            t0: self.t,
+        };
         let t_end = self.t + h;
         let mut t = self.t;
         let at_start = self.work;
@@ -413,7 +442,7 @@ impl Scene for Transverse {
                 t_end
             };
             let next = if next > t { next } else { t_end };
-            self.substep(t, next)?;
+            self.substep(t, next, vd)?;
             t = next;
         }
         self.t = t_end;
@@ -437,14 +466,8 @@ impl Scene for Transverse {
 
     fn write_outputs(&self, values: &mut ValueSet) {
         let (ff, ffx, ffy, s, beta) = self.forces();
-        let mut vd = self.vd();
-        if self.drive == Drive::Input {
-            // Direct feedthrough of the hd term: Fd at t follows vd_in set at t.
-            let v = values.real(vr::VD_IN);
-            if v.is_finite() {
-                vd = v;
-            }
-        }
+        // Direct feedthrough of the hd term: Fd at t follows vd_in set at t.
+        let vd = self.vd_now(values);
         values.set(vr::FF, ff);
         values.set(vr::FFX, ffx);
         values.set(vr::FFY, ffy);
@@ -491,6 +514,7 @@ impl Scene for Transverse {
         self.vd_held = state[1];
         self.y.copy_from_slice(&state[2..2 + MAX_DIM]);
         self.mean.restore(&state[2 + MAX_DIM..base]);
+        self.vd_rate = 0.0;
         match &mut self.solver {
             Solver::Dopri5(d) => d.h = state[base],
             Solver::Radau5(r) => r.h_next = state[base],
@@ -499,9 +523,57 @@ impl Scene for Transverse {
         }
         Ok(())
     }
+
+    fn set_input_derivative(
+        &mut self,
+        value_reference: u32,
+        derivative: f64,
+    ) -> Result<(), String> {
+        if value_reference != vr::VD_IN {
+            return Err(format!("value reference {value_reference} is not an input"));
+        }
+        // Kept when vd is prescribed too, and ignored there like vd_in itself.
+        self.vd_rate = derivative;
+        Ok(())
+    }
+
+    /// Fd' = kd (vd - x') + hd (vd' - x'') and x' (zero when the body is held).
+    fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {
+        let (vx, ax) = if self.p.held {
+            (0.0, 0.0)
+        } else {
+            let ffx = self.forces().1;
+            let fd = self.p.drive_force(&self.y, self.vd_now(values));
+            (self.y[VX], (fd - ffx) / self.p.m)
+        };
+        match value_reference {
+            vr::FD => {
+                let rate = if self.drive == Drive::Input {
+                    self.vd_rate
+                } else {
+                    0.0
+                };
+                Ok(self.p.kd * (self.vd_now(values) - vx) + self.p.hd * (rate - ax))
+            }
+            vr::X => Ok(vx),
+            _ => Err(
+                "only Fd and x have first derivatives here (the contact forces' would need the bristle's second derivative)"
+                    .to_string(),
+            ),
+        }
+    }
 }
 
 impl Transverse {
+    /// vd as the outputs see it: vd_in's current value when it is the source (Fd's hd term
+    /// follows an input set after the last step).
+    fn vd_now(&self, values: &ValueSet) -> f64 {
+        match self.drive {
+            Drive::Input if values.real(vr::VD_IN).is_finite() => values.real(vr::VD_IN),
+            _ => self.vd(),
+        }
+    }
+
     /// The start time the scene was built at.
     pub fn start_time(&self) -> f64 {
         self.start_time
@@ -510,3 +582,6 @@ impl Transverse {
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod drive_input_tests;

@@ -20,7 +20,7 @@ from fmpy.fmi2 import fmi2FMUstate
 
 from conftest import Slave, unzipped
 
-MODELS = ["LongitudinalFriction", "TransverseFriction", "DryFrictionOscillator"]
+MODELS = ["LongitudinalFriction", "TransverseFriction", "DryFrictionOscillator", "DriveTrain"]
 
 I, IM, SC, SF, T, E = (
     "Instantiated",
@@ -72,6 +72,7 @@ STEP_FAILS_WITH = {
     "LongitudinalFriction": {"law": "lugre", "sigma2": 1e300, "vc": 1e300},
     "TransverseFriction": {"kt": 1e300},
     "DryFrictionOscillator": {"P": 1e308},
+    "DriveTrain": {"kt_m": 1e308},
 }
 
 PHASE_CODE = {state: code for code, state in enumerate(STATES)}

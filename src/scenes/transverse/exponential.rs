@@ -22,7 +22,7 @@
 //! oscillation sqrt(kt/m) while the contact sticks (a Stormer-Verlet pair then): stable for
 //! h sqrt(kt/m) < 2, i.e. more than 2 steps a period at 3 kHz and the paper's kt, 60 at kt x 1000.
 
-use super::{Equations, Params, DIM, VX, VY, ZX, ZY};
+use super::{DriveVelocity, Equations, Params, DIM, VX, VY, ZX, ZY};
 use crate::friction::lugre2d::{direction, SlipLaw};
 use crate::solve::{Ode, Work, MAX_DIM, MAX_STEPS_PER_DO_STEP};
 use nalgebra::Vector2;
@@ -38,7 +38,7 @@ impl Exponential {
     pub fn advance(
         &self,
         p: &Params,
-        vd: f64,
+        vd: DriveVelocity,
         t0: f64,
         t1: f64,
         y: &mut [f64],

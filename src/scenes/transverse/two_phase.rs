@@ -7,7 +7,7 @@
 //! a deflection that an Euler update drives below zero puts M on the other side of N.
 //! The mean of FFx sums FFx at the step ends times the step, the integral form of eq. 30.
 
-use super::{Params, LAMBDA, Q, VX, VY, W, X, Y, ZX, ZY};
+use super::{DriveVelocity, Params, LAMBDA, Q, VX, VY, W, X, Y, ZX, ZY};
 use crate::solve::Work;
 use nalgebra::Vector2;
 
@@ -68,7 +68,7 @@ impl TwoPhase {
     pub fn advance(
         &mut self,
         p: &Params,
-        vd: f64,
+        vd: DriveVelocity,
         t0: f64,
         t1: f64,
         y: &mut [f64],
@@ -106,8 +106,9 @@ impl TwoPhase {
         }
     }
 
-    /// One step of eq. 11-29 over `h`.
-    fn step(&mut self, p: &Params, vd: f64, t: f64, h: f64, y: &mut [f64]) {
+    /// One step of eq. 11-29 over `h`. The drive stretch takes the exact integral of vd over the
+    /// step (its midpoint value, vd being linear in t).
+    fn step(&mut self, p: &Params, vd: DriveVelocity, t: f64, h: f64, y: &mut [f64]) {
         let law = &p.law;
         let n_old = Vector2::new(y[X], y[Y]);
         let z = Vector2::new(y[ZX], y[ZY]);
@@ -115,15 +116,16 @@ impl TwoPhase {
         let m_point = n_old - z;
 
         // The body under the drive and the previous step's contact force (eq. 7-10).
+        let vd_mid = vd.at(t + 0.5 * h);
         if p.held {
-            y[LAMBDA] += h * vd;
+            y[LAMBDA] += h * vd_mid;
         } else {
-            let fd = p.drive_force(y, vd);
+            let fd = p.drive_force(y, vd.at(t));
             y[VX] += h * (fd - self.ffx) / p.m;
             y[VY] += h * self.ffy / p.m;
             y[X] += h * y[VX];
             y[Y] += h * y[VY];
-            y[LAMBDA] += h * (vd - y[VX]);
+            y[LAMBDA] += h * (vd_mid - y[VX]);
         }
         let n1 = Vector2::new(y[X], y[Y]);
 

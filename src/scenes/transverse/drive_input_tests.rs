@@ -1,0 +1,75 @@
+//! vd_in moving linearly over a step when the master gives its derivative (every solver).
+
+use super::*;
+use crate::interface::transverse::{BODY, DRIVE_SOURCE, SOLVER, TABLE};
+
+fn values(solver: &str, body: &str) -> ValueSet {
+    let mut v = ValueSet::start(&TABLE);
+    v.set(vr::SOLVER, f64::from(SOLVER.value_of(solver).unwrap()));
+    v.set(vr::BODY, f64::from(BODY.value_of(body).unwrap()));
+    v.set(
+        vr::DRIVE_SOURCE,
+        f64::from(DRIVE_SOURCE.value_of("input").unwrap()),
+    );
+    v
+}
+
+const SOLVERS: [&str; 5] = ["dopri5", "rk4", "two_phase", "radau5", "exponential"];
+
+/// Oracle: with the body held the drive stretch is the integral of vd, v0 h + a h^2/2 for a
+/// ramp, and v0 h for the held step that follows (the derivative applied to one step only).
+#[test]
+fn a_held_body_stretches_the_drive_by_the_integral_of_the_ramp() {
+    let (v0, a, h) = (5e-4, 0.3, 1e-3);
+    for solver in SOLVERS {
+        let mut v = values(solver, "held");
+        v.set(vr::VD_IN, v0);
+        let mut scene = Transverse::new(&v, 0.0).unwrap();
+        scene.set_input_derivative(vr::VD_IN, a).unwrap();
+        scene.do_step(h, &v).unwrap();
+        let want = v0 * h + 0.5 * a * h * h;
+        let fd = scene.drive_force();
+        assert!(
+            (fd - scene.p.kd * want).abs() < 1e-9 * scene.p.kd * want,
+            "{solver}: Fd = {fd}, want {}",
+            scene.p.kd * want
+        );
+        scene.do_step(h, &v).unwrap();
+        let want = want + v0 * h;
+        assert!(
+            (scene.drive_force() - scene.p.kd * want).abs() < 1e-9 * scene.p.kd * want,
+            "{solver}: the second step was not held"
+        );
+    }
+}
+
+/// Oracle: Fd's and x's difference quotients over a short step of a free, sliding body with
+/// drive damping, vd_in moving at the rate the derivative says.
+#[test]
+fn fd_and_x_derivatives_match_their_difference_quotients() {
+    let mut v = values("dopri5", "free");
+    v.set(vr::HD, 50.0);
+    v.set(vr::VA, 0.0);
+    v.set(vr::VD_IN, 5e-4);
+    let mut scene = Transverse::new(&v, 0.0).unwrap();
+    for _ in 0..20 {
+        scene.do_step(1e-4, &v).unwrap();
+    }
+    let a = 0.2;
+    scene.set_input_derivative(vr::VD_IN, a).unwrap();
+    let d_fd = scene.output_derivative(vr::FD, &v).unwrap();
+    let d_x = scene.output_derivative(vr::X, &v).unwrap();
+    let mut before = v.clone();
+    scene.write_outputs(&mut before);
+    let h = 1e-8;
+    scene.do_step(h, &v).unwrap();
+    let mut after = v.clone();
+    after.set(vr::VD_IN, 5e-4 + a * h);
+    scene.write_outputs(&mut after);
+    let q_fd = (after.real(vr::FD) - before.real(vr::FD)) / h;
+    let q_x = (after.real(vr::X) - before.real(vr::X)) / h;
+    assert!((q_fd - d_fd).abs() < 1e-4 * d_fd.abs(), "{q_fd} vs {d_fd}");
+    assert!((q_x - d_x).abs() < 1e-4 * d_x.abs(), "{q_x} vs {d_x}");
+    assert!(scene.output_derivative(vr::FF, &v).is_err());
+    assert!(scene.set_input_derivative(vr::FD, 1.0).is_err());
+}
