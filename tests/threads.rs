@@ -13,7 +13,7 @@
 use friction_fmu::fmi2::driver::Instance;
 use friction_fmu::fmi2::ffi::Status;
 use friction_fmu::interface::variable::{Causality, Kind, ModelTable};
-use friction_fmu::interface::{longitudinal, oscillator, transverse, MODELS};
+use friction_fmu::interface::{drive, longitudinal, oscillator, transverse, MODELS};
 use std::sync::Barrier;
 
 const THREADS: usize = 4;
@@ -29,6 +29,7 @@ fn varied_parameter(table: &ModelTable, index: usize) -> (u32, f64) {
         "LongitudinalFriction" => (longitudinal::vr::VC, 0.1 + 0.05 * k),
         "TransverseFriction" => (transverse::vr::VD, 0.02 + 0.01 * k),
         "DryFrictionOscillator" => (oscillator::vr::P, 2.0 + 1.5 * k),
+        "DriveTrain" => (drive::vr::V, 1.0 + 0.5 * k),
         other => panic!("no varied parameter for {other}: add one here"),
     }
 }
