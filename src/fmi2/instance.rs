@@ -476,7 +476,12 @@ impl Instance {
         {
             return status;
         }
-        let max_order = i32::from(interpolates_inputs(self.model.table));
+        if !interpolates_inputs(self.model.table) {
+            return self.error(&format!(
+                "{FUNCTION}: this model gives no output derivatives (maxOutputDerivativeOrder = 0)"
+            ));
+        }
+        let max_order = 1;
         for (i, (&vr, &order)) in value_references.iter().zip(orders).enumerate() {
             let var = match self.variable(FUNCTION, vr, |k| matches!(k, Kind::Real { .. }), "Real")
             {

@@ -161,3 +161,37 @@ pub fn require_passive(
         ))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{Scope, MODELS};
+    use crate::interface::interpolates_inputs;
+    use crate::interface::values::ValueSet;
+    use crate::interface::variable::Causality;
+
+    /// What modelDescription.xml declares (canInterpolateInputs) is what the scenes do: every
+    /// input of an interpolating model takes a derivative, no input of another model does.
+    #[test]
+    fn scenes_take_input_derivatives_exactly_where_the_xml_says() {
+        for model in MODELS {
+            let values = ValueSet::start(model.table);
+            let mut scene = (model.build)(&values, 0.0, &Scope::full()).unwrap();
+            for input in model
+                .table
+                .variables
+                .iter()
+                .filter(|v| v.causality == Causality::Input)
+            {
+                assert_eq!(
+                    scene
+                        .set_input_derivative(input.value_reference, 1.0)
+                        .is_ok(),
+                    interpolates_inputs(model.table),
+                    "{} {}",
+                    model.table.model_identifier,
+                    input.name
+                );
+            }
+        }
+    }
+}
