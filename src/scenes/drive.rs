@@ -1,9 +1,11 @@
 //! DriveTrain: a DC motor, a gear and a lead screw whose nut drives a load (the far end of
 //! TransverseFriction's drive spring).
 //!
-//!     L i'        = V - R i - ke omega
-//!     J_eff omega' = kt_m i - b omega - r F_load / efficiency,   r = lead / (2 pi n)
-//!     x_nut'      = r omega,   v_nut = r omega,   J_eff = J + m_nut r^2 / efficiency
+//! ```text
+//! L i'         = V - R i - ke omega
+//! J_eff omega' = kt_m i - b omega - r F_load / efficiency,   r = lead / (2 pi n)
+//! x_nut'       = r omega,   v_nut = r omega,   J_eff = J + m_nut r^2 / efficiency
+//! ```
 //!
 //! Linear with inputs that are held, or move linearly when the master gives their derivatives,
 //! over a step: so the state augmented with the inputs and their rates, `[i, omega, x_nut, V,
