@@ -6,6 +6,7 @@
 pub mod fmi2;
 pub mod friction;
 pub mod interface;
+pub mod model_description;
 pub mod package;
 pub mod report;
 pub mod scenes;
