@@ -9,5 +9,6 @@ pub mod interface;
 pub mod model_description;
 pub mod package;
 pub mod report;
+pub mod scene_file;
 pub mod scenes;
 pub mod solve;
