@@ -115,24 +115,36 @@ pub unsafe extern "C" fn fmi2Instantiate(
             return refuse(format!("fmuType = {fmu_type}: this FMU supports only fmi2CoSimulation ({CO_SIMULATION})"));
         }
         let guid = text(fmu_guid).unwrap_or("");
-        let Some(&(model_identifier, guid)) = super::GUIDS.iter().find(|(_, g)| *g == guid) else {
-            let known: Vec<String> = super::GUIDS.iter().map(|(id, g)| format!("{g} ({id})")).collect();
-            return refuse(format!(
-                "fmuGUID \"{guid}\" matches no model of this binary: expected {} (is the modelDescription.xml from another build?)",
-                known.join(" or ")
-            ));
-        };
-        let Some(model) = crate::scenes::model(model_identifier) else {
-            return refuse(format!("model {model_identifier} is not built into this binary"));
-        };
-        if let Some(location) = text(fmu_resource_location) {
+        let location = text(fmu_resource_location);
+        if let Some(location) = location {
             if !location.is_empty() && !location.starts_with("file:") {
                 return refuse(format!("fmuResourceLocation \"{location}\": expected a file: URI"));
             }
         }
         let id = NEXT_ID.fetch_add(1, Ordering::Relaxed);
-        let instance = Box::new(Instance::new(id, model, guid, logger, logging_on != FALSE));
-        let address = Box::into_raw(instance);
+        let instance = if let Some(&(model_identifier, guid)) = super::GUIDS.iter().find(|(_, g)| *g == guid) {
+            let Some(model) = crate::scenes::model(model_identifier) else {
+                return refuse(format!("model {model_identifier} is not built into this binary"));
+            };
+            Instance::new(id, model, guid, logger, logging_on != FALSE)
+        } else {
+            // Not a full model: a scene file's FMU, if its resources say so.
+            match crate::scene_file::registry::for_guid(guid, location) {
+                Ok(loaded) => {
+                    let scene = &loaded.scene;
+                    Instance::new(id, scene.model, &loaded.guid, logger, logging_on != FALSE)
+                        .for_scene(&scene.name, &loaded.guid, &scene.values, &loaded.scope)
+                }
+                Err(why) => {
+                    let known: Vec<String> = super::GUIDS.iter().map(|(id, g)| format!("{g} ({id})")).collect();
+                    return refuse(format!(
+                        "fmuGUID \"{guid}\" matches no model of this binary: expected {} (is the modelDescription.xml from another build?), or a scene FMU's; {why}",
+                        known.join(" or ")
+                    ));
+                }
+            }
+        };
+        let address = Box::into_raw(Box::new(instance));
         live().push(address as usize);
         address as Component
     }))

@@ -45,3 +45,76 @@ pub fn load(path: &Path) -> Result<&'static Loaded, String> {
     });
     Ok(entry)
 }
+
+/// The scene file behind a GUID that is no full model's: `resources/scene.toml` under the
+/// fmuResourceLocation, accepted only if the interface it describes hashes to `guid`. The error
+/// says what is missing or does not match, for fmi2Instantiate's log.
+pub fn for_guid(guid: &str, resource_location: Option<&str>) -> Result<&'static Loaded, String> {
+    let location = resource_location.filter(|l| !l.is_empty()).ok_or_else(|| {
+        "fmuResourceLocation is NULL or empty, so no resources/scene.toml of a scene FMU can confirm it".to_string()
+    })?;
+    let path = super::uri::file_path(location)
+        .map_err(|e| format!("fmuResourceLocation {e}"))?
+        .join(crate::package::SCENE_RESOURCE);
+    if !path.is_file() {
+        return Err(format!(
+            "there is no scene file {}: expected a full model's GUID or a scene FMU's resources/scene.toml",
+            path.display()
+        ));
+    }
+    let loaded = load(&path)?;
+    if loaded.guid != guid {
+        return Err(format!(
+            "{} describes an interface with GUID {}, not this one: expected the scene file the FMU was packed with (was it edited after packing?)",
+            path.display(),
+            loaded.guid
+        ));
+    }
+    Ok(loaded)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::for_guid;
+
+    const SCENE: &str = "name = \"Cached\"\nmodel = \"DryFrictionOscillator\"\nlaw = \"exact\"\nsolver = \"rk4\"\noutputs = [\"u\"]\n[experiment]\nstart = 0\nstop = 1\nstep = 0.1\n";
+
+    /// Oracle: the GUID of the packed XML (`model_description`); the registry hands out one
+    /// leaked entry per (path, content), and a changed file is a new entry with another GUID.
+    #[test]
+    fn scene_resources_are_checked_against_the_guid_and_parsed_once() {
+        let dir = std::env::temp_dir().join(format!("scene registry {}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("scene.toml");
+        std::fs::write(&file, SCENE).unwrap();
+        let guid = crate::scene_file::parse("x", SCENE)
+            .unwrap()
+            .model_description()
+            .0;
+        let uri = format!("file://{}", dir.display()).replace(' ', "%20");
+        let first = for_guid(&guid, Some(&uri)).unwrap();
+        let second = for_guid(&guid, Some(&format!("{uri}/"))).unwrap();
+        assert!(std::ptr::eq(first, second));
+        assert_eq!(first.scene.name, "Cached");
+        assert!(first.scope.fixes(crate::interface::oscillator::vr::P));
+
+        let wrong = for_guid("{0}", Some(&uri)).err().unwrap();
+        assert!(
+            wrong.contains(&format!("describes an interface with GUID {guid}")),
+            "{wrong}"
+        );
+        std::fs::write(&file, SCENE.replace("stop = 1", "stop = 2")).unwrap();
+        let edited = for_guid(&guid, Some(&uri)).err().unwrap();
+        assert!(edited.contains("was it edited after packing?"), "{edited}");
+        assert!(for_guid(&guid, None)
+            .err()
+            .unwrap()
+            .contains("NULL or empty"));
+        std::fs::remove_file(&file).unwrap();
+        assert!(for_guid(&guid, Some(&uri))
+            .err()
+            .unwrap()
+            .contains("there is no scene file"));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
