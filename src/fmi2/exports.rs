@@ -133,7 +133,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
                 Ok(loaded) => {
                     let scene = &loaded.scene;
                     Instance::new(id, scene.model, &loaded.guid, logger, logging_on != FALSE)
-                        .for_scene(&scene.name, &loaded.guid, &scene.values, &loaded.scope)
+                        .for_scene(&scene.name, &scene.values, &loaded.scope)
                 }
                 Err(why) => {
                     let known: Vec<String> = super::GUIDS.iter().map(|(id, g)| format!("{g} ({id})")).collect();

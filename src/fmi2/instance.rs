@@ -125,17 +125,10 @@ impl Instance {
         }
     }
 
-    /// The instance of a scene file's FMU: `name` and `guid` are its own, `values` replace the
+    /// The instance of a scene file's FMU: `name` is its modelIdentifier, `values` replace the
     /// model's start values (also for fmi2Reset), `scope` hides what its interface leaves out.
-    pub fn for_scene(
-        mut self,
-        name: &'static str,
-        guid: &'static str,
-        values: &ValueSet,
-        scope: &Scope,
-    ) -> Self {
+    pub fn for_scene(mut self, name: &'static str, values: &ValueSet, scope: &Scope) -> Self {
         self.name = name;
-        self.guid = guid;
         self.values.clone_from(values);
         self.defaults.clone_from(values);
         self.scope.clone_from(scope);

@@ -33,9 +33,9 @@ pub struct RawExperiment {
 pub fn parse(file: &str, text: &str) -> Result<Raw, String> {
     toml::from_str(text).map_err(|e: toml::de::Error| {
         let message = e.message().trim_end();
-        match e.span() {
-            Some(span) if !text.is_empty() && span.start < text.len() => {
-                let line = text[..span.start].matches('\n').count() + 1;
+        match e.span().and_then(|span| text.get(..span.start)) {
+            Some(before) if !text.is_empty() && before.len() < text.len() => {
+                let line = before.matches('\n').count() + 1;
                 let content = text.lines().nth(line - 1).unwrap_or("").trim();
                 format!("{file}, line {line} (`{content}`): {message}")
             }
