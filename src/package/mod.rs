@@ -4,16 +4,13 @@
 
 mod documentation;
 
-use crate::scene_file::SceneFile;
+use crate::scene_file::{self, SceneFile};
 use std::fs::File;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use zip::write::SimpleFileOptions;
 
 include!(concat!(env!("OUT_DIR"), "/model_descriptions.rs"));
-
-/// Where a scene FMU carries its scene file, under resources/.
-pub const SCENE_RESOURCE: &str = "scene.toml";
 
 /// The platform folder of binaries/ for the machine this library was built for.
 pub fn platform() -> &'static str {
@@ -113,7 +110,7 @@ pub fn pack_scene(scene: &SceneFile, library: &Path, out_dir: &Path) -> io::Resu
         model_identifier: &scene.name,
         xml: &xml,
         documentation: &documentation::scene_page(scene),
-        resources: &[(SCENE_RESOURCE, scene.text.as_bytes())],
+        resources: &[(scene_file::RESOURCE, scene.text.as_bytes())],
     };
     write_fmu(&contents, library, out_dir)
 }

@@ -132,12 +132,15 @@ pub fn scene(file: &str, raw: Raw, text: &str) -> Result<SceneFile, String> {
         ));
     }
 
-    for &(id, switch, item, input) in INPUT_SWITCHES {
+    let switches = INPUT_SWITCHES
+        .iter()
+        .filter(|(id, ..)| *id == table.model_identifier);
+    for &(_, switch, item, input) in switches {
         let (Some(switch_var), Some(input_var)) = (table.by_name(switch), table.by_name(input))
         else {
             continue;
         };
-        if id != table.model_identifier || kept.contains(&input_var.value_reference) {
+        if kept.contains(&input_var.value_reference) {
             continue;
         }
         let tunable = kept.contains(&switch_var.value_reference);

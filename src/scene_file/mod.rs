@@ -37,6 +37,9 @@ use crate::model_description::Experiment;
 use crate::scenes::Model;
 use std::path::Path;
 
+/// Where a scene file's FMU carries the file, under resources/.
+pub const RESOURCE: &str = "scene.toml";
+
 /// A checked scene file: the model, every variable's value, and what the interface keeps.
 #[derive(Clone)]
 pub struct SceneFile {

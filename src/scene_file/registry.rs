@@ -55,7 +55,7 @@ pub fn for_guid(guid: &str, resource_location: Option<&str>) -> Result<&'static 
     })?;
     let path = super::uri::file_path(location)
         .map_err(|e| format!("fmuResourceLocation {e}"))?
-        .join(crate::package::SCENE_RESOURCE);
+        .join(super::RESOURCE);
     if !path.is_file() {
         return Err(format!(
             "there is no scene file {}: expected a full model's GUID or a scene FMU's resources/scene.toml",
