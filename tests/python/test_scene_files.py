@@ -79,6 +79,8 @@ def full_start_values(scene):
 
 
 def test_every_figure_and_table_has_a_scene_file():
+    """Oracle: the papers' list: seed 004 Tables 1-3 (Coulomb and Dahl columns of Table 1),
+    seed 000 Fig. 4a-8, seed 001 Fig. 1-4."""
     names = {tomllib.loads(f.read_text())["name"] for f in SCENES}
     expected = ({"Table1Dahl", "Table1Coulomb", "Table2", "Table3"}
                 | {f"Fig{n}" for n in ["4a", "4b", "5", "6", "7", "8"]}
@@ -88,6 +90,8 @@ def test_every_figure_and_table_has_a_scene_file():
 
 @pytest.mark.parametrize("stem", [f.stem for f in SCENES])
 def test_model_description_keeps_exactly_what_the_file_lists(packed, stem):
+    """Oracle: the scene file read with tomllib, and the full model's variable order; fmpy's
+    validator checks the rest of the XML (ModelStructure indices, declared types, units)."""
     scene, path = packed[stem]
     assert validate_fmu(str(path)) == []
     md = fmpy.read_model_description(str(path))
@@ -110,7 +114,8 @@ def test_model_description_keeps_exactly_what_the_file_lists(packed, stem):
     assert float(md.defaultExperiment.startTime) == experiment["start"]
     assert float(md.defaultExperiment.stopTime) == experiment["stop"]
     assert float(md.defaultExperiment.stepSize) == experiment["step"]
-    assert float(md.defaultExperiment.tolerance) == experiment["tolerance"]
+    tolerance = md.defaultExperiment.tolerance
+    assert (tolerance and float(tolerance)) == experiment.get("tolerance")
 
 
 @pytest.mark.parametrize("stem", [f.stem for f in SCENES])
