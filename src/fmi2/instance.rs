@@ -432,8 +432,8 @@ impl Instance {
             Ok(()) => {
                 scene.write_outputs(&mut self.values);
                 // The scenes check their states; this is the last line of defence: no NaN ever
-                // reaches the master silently.
-                // Hidden outputs are nobody's business: a scene may not even compute them.
+                // reaches the master silently. Outputs a scene file hides are not checked: the
+                // scene may skip computing them.
                 let bad = self.model.table.variables.iter().find(|v| {
                     v.causality == Causality::Output
                         && self.scope.exposes(v.value_reference)
