@@ -6,7 +6,9 @@
 pub mod fmi2;
 pub mod friction;
 pub mod interface;
+pub mod model_description;
 pub mod package;
 pub mod report;
+pub mod scene_file;
 pub mod scenes;
 pub mod solve;

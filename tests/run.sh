@@ -27,6 +27,7 @@ cargo clippy --all-targets --release -- -D warnings
 echo "== building the FMUs"
 cargo build --release
 target/release/friction-fmu build
+target/release/friction-fmu build scenes/*.toml --out fmu-out/scenes
 echo "== cargo test"
 cargo test --release
 echo "== fuzzing under valgrind memcheck (invalid reads and writes, use after free)"

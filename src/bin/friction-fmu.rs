@@ -1,19 +1,23 @@
 //! friction-fmu: builds the FMUs and prints what they compute beside the papers.
 //!
 //!   friction-fmu build [--out DIR]   pack every model into DIR/<Model>.fmu (default fmu-out)
+//!   friction-fmu build FILE.toml... [--out DIR]
+//!                                    pack each scene file into DIR/<name>.fmu: the model's
+//!                                    library with only the variables the file keeps
 //!   friction-fmu run [--out DIR]     build, then print each scene's tables beside the papers'
 //!                                    and write figures into DIR/figures (the default command)
 //!   friction-fmu report [--out DIR]  error against run time of every solver of every scene:
 //!                                    DIR/<scene>.md tables and DIR/<scene>.svg plots
 //!                                    (default DIR: report); then prints the stability matrix
 
-use friction_fmu::{package, report, scenes};
+use friction_fmu::{package, report, scene_file, scenes};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: friction-fmu [build|run|report] [--out DIR]\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out)\n  run     build, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.svg (default DIR: report)";
+const USAGE: &str = "usage: friction-fmu [build [SCENE.toml...]|run|report] [--out DIR]\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out)\n          or, given scene files, each into DIR/<name>.fmu with only the variables it keeps\n  run     build, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.svg (default DIR: report)";
 
-fn build(out: &Path) -> Result<(), String> {
+/// The FMU library built beside this program.
+fn library() -> Result<PathBuf, String> {
     let exe = std::env::current_exe().map_err(|e| format!("cannot locate this program: {e}"))?;
     let dir = exe.parent().ok_or("this program has no directory")?;
     let library = package::library_beside(dir);
@@ -23,6 +27,36 @@ fn build(out: &Path) -> Result<(), String> {
             library.display()
         ));
     }
+    Ok(library)
+}
+
+/// Packs scene files; all are checked before any FMU is written.
+fn build_scenes(files: &[PathBuf], out: &Path) -> Result<(), String> {
+    let library = library()?;
+    let scenes = files
+        .iter()
+        .map(|file| scene_file::read(file))
+        .collect::<Result<Vec<_>, _>>()?;
+    for (i, scene) in scenes.iter().enumerate() {
+        if let Some(other) = scenes[..i].iter().position(|s| s.name == scene.name) {
+            return Err(format!(
+                "{} and {} both name their FMU \"{}\": expected one FMU per name",
+                files[other].display(),
+                files[i].display(),
+                scene.name
+            ));
+        }
+    }
+    for scene in &scenes {
+        let path = package::pack_scene(scene, &library, out)
+            .map_err(|e| format!("packing {}: {e}", scene.name))?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+fn build(out: &Path) -> Result<(), String> {
+    let library = library()?;
     for model in scenes::MODELS {
         let path = package::pack(model.table.model_identifier, &library, out)
             .map_err(|e| format!("packing {}: {e}", model.table.model_identifier))?;
@@ -76,6 +110,7 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let mut command = "run";
     let mut out = None;
+    let mut files = Vec::new();
     let mut i = 0;
     while i < args.len() {
         match args[i].as_str() {
@@ -90,6 +125,9 @@ fn main() -> ExitCode {
                 println!("{USAGE}");
                 return ExitCode::SUCCESS;
             }
+            file if command == "build" && !file.starts_with('-') => {
+                files.push(PathBuf::from(file));
+            }
             other => {
                 eprintln!("unknown argument {other:?}\n{USAGE}");
                 return ExitCode::from(2);
@@ -98,6 +136,9 @@ fn main() -> ExitCode {
         i += 1;
     }
     let result = match command {
+        "build" if !files.is_empty() => {
+            build_scenes(&files, &out.unwrap_or_else(|| PathBuf::from("fmu-out")))
+        }
         "build" => build(&out.unwrap_or_else(|| PathBuf::from("fmu-out"))),
         "report" => work_precision(&out.unwrap_or_else(|| PathBuf::from("report"))),
         _ => run(&out.unwrap_or_else(|| PathBuf::from("fmu-out"))),

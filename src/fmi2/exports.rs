@@ -8,6 +8,8 @@ use super::instance::{Instance, Phase, READABLE, STATE_PHASES};
 use super::logger::Logger;
 use super::snapshot::Snapshot;
 use crate::interface::variable::Kind;
+use crate::scene_file::registry::{self, Loaded};
+use crate::scenes::Model;
 use std::ffi::{c_int, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -86,6 +88,32 @@ pub extern "C" fn fmi2GetVersion() -> FmiString {
     c"2.0".as_ptr()
 }
 
+/// The model and GUID an fmuGUID names: a full model's, or else a scene FMU's, whose
+/// resources/scene.toml must describe an interface with that GUID.
+fn interface_of(
+    guid: &str,
+    resource_location: Option<&str>,
+) -> Result<(&'static Model, &'static str, Option<&'static Loaded>), String> {
+    if let Some(&(model_identifier, guid)) = super::GUIDS.iter().find(|(_, g)| *g == guid) {
+        let model = crate::scenes::model(model_identifier)
+            .ok_or_else(|| format!("model {model_identifier} is not built into this binary"))?;
+        return Ok((model, guid, None));
+    }
+    match registry::for_guid(guid, resource_location) {
+        Ok(loaded) => Ok((loaded.scene.model, &loaded.guid, Some(loaded))),
+        Err(why) => {
+            let known: Vec<String> = super::GUIDS
+                .iter()
+                .map(|(id, g)| format!("{g} ({id})"))
+                .collect();
+            Err(format!(
+                "fmuGUID \"{guid}\" matches no model of this binary: expected {} (is the modelDescription.xml from another build?), or a scene FMU's; {why}",
+                known.join(" or ")
+            ))
+        }
+    }
+}
+
 /// # Safety
 /// Pointers as the FMI 2.0 standard defines them.
 #[no_mangle]
@@ -100,39 +128,49 @@ pub unsafe extern "C" fn fmi2Instantiate(
 ) -> Component {
     catch_unwind(AssertUnwindSafe(|| {
         // Without a logger nothing could ever be reported: refuse, as the standard requires one.
-        let Some(functions) = functions.as_ref() else { return std::ptr::null_mut() };
-        let Some(callback) = functions.logger else { return std::ptr::null_mut() };
+        let Some(functions) = functions.as_ref() else {
+            return std::ptr::null_mut();
+        };
+        let Some(callback) = functions.logger else {
+            return std::ptr::null_mut();
+        };
         let name = text(instance_name).unwrap_or("");
         let logger = Logger::new(Some(callback), functions.component_environment, name);
         let refuse = |message: String| {
-            logger.log(Status::Error, super::logger::CATEGORY_ERROR, &format!("fmi2Instantiate: {message}"));
+            logger.log(
+                Status::Error,
+                super::logger::CATEGORY_ERROR,
+                &format!("fmi2Instantiate: {message}"),
+            );
             std::ptr::null_mut()
         };
         if name.is_empty() {
             return refuse("instanceName is NULL or empty: expected a non-empty name".into());
         }
         if fmu_type != CO_SIMULATION {
-            return refuse(format!("fmuType = {fmu_type}: this FMU supports only fmi2CoSimulation ({CO_SIMULATION})"));
+            return refuse(format!(
+                "fmuType = {fmu_type}: this FMU supports only fmi2CoSimulation ({CO_SIMULATION})"
+            ));
         }
         let guid = text(fmu_guid).unwrap_or("");
-        let Some(&(model_identifier, guid)) = super::GUIDS.iter().find(|(_, g)| *g == guid) else {
-            let known: Vec<String> = super::GUIDS.iter().map(|(id, g)| format!("{g} ({id})")).collect();
-            return refuse(format!(
-                "fmuGUID \"{guid}\" matches no model of this binary: expected {} (is the modelDescription.xml from another build?)",
-                known.join(" or ")
-            ));
-        };
-        let Some(model) = crate::scenes::model(model_identifier) else {
-            return refuse(format!("model {model_identifier} is not built into this binary"));
-        };
-        if let Some(location) = text(fmu_resource_location) {
+        let location = text(fmu_resource_location);
+        if let Some(location) = location {
             if !location.is_empty() && !location.starts_with("file:") {
-                return refuse(format!("fmuResourceLocation \"{location}\": expected a file: URI"));
+                return refuse(format!(
+                    "fmuResourceLocation \"{location}\": expected a file: URI"
+                ));
             }
         }
+        let (model, guid, scene) = match interface_of(guid, location) {
+            Ok(found) => found,
+            Err(message) => return refuse(message),
+        };
         let id = NEXT_ID.fetch_add(1, Ordering::Relaxed);
-        let instance = Box::new(Instance::new(id, model, guid, logger, logging_on != FALSE));
-        let address = Box::into_raw(instance);
+        let mut instance = Instance::new(id, model, guid, logger, logging_on != FALSE);
+        if let Some(loaded) = scene {
+            instance = instance.for_scene(&loaded.scene.name, &loaded.scene.values, &loaded.scope);
+        }
+        let address = Box::into_raw(Box::new(instance));
         live().push(address as usize);
         address as Component
     }))

@@ -77,11 +77,16 @@ pub const STATE_PHASES: &[Phase] = &[
 pub struct Instance {
     pub id: u64,
     pub model: &'static Model,
+    /// The FMU's modelIdentifier: the model's, or a scene file's name.
+    pub name: &'static str,
     pub guid: &'static str,
     logger: Logger,
     log_calls: bool,
     pub phase: Phase,
     pub values: ValueSet,
+    /// The values fmi2Instantiate set and fmi2Reset restores: the model's start values, or a
+    /// scene file's.
+    defaults: ValueSet,
     /// What the interface hides (nothing for a full model).
     pub scope: Scope,
     pub scene: Option<Box<dyn Scene>>,
@@ -107,11 +112,13 @@ impl Instance {
         Instance {
             id,
             model,
+            name: model.table.model_identifier,
             guid,
             logger,
             log_calls,
             phase: Instantiated,
             values: ValueSet::start(model.table),
+            defaults: ValueSet::start(model.table),
             scope: Scope::full(),
             scene: None,
             start_time: 0.0,
@@ -128,6 +135,16 @@ impl Instance {
                     .count(),
             ),
         }
+    }
+
+    /// The instance of a scene file's FMU: `name` is its modelIdentifier, `values` replace the
+    /// model's start values (also for fmi2Reset), `scope` hides what its interface leaves out.
+    pub fn for_scene(mut self, name: &'static str, values: &ValueSet, scope: &Scope) -> Self {
+        self.name = name;
+        self.values.clone_from(values);
+        self.defaults.clone_from(values);
+        self.scope.clone_from(scope);
+        self
     }
 
     pub fn error(&self, message: &str) -> Status {
@@ -253,7 +270,7 @@ impl Instance {
     /// Back to the state right after fmi2Instantiate: start values, no scene, time 0.
     pub fn reset(&mut self) -> Status {
         self.phase = Instantiated;
-        self.values = ValueSet::start(self.model.table);
+        self.values.clone_from(&self.defaults);
         self.scene = None;
         self.start_time = 0.0;
         self.stop_time = None;
@@ -263,14 +280,21 @@ impl Instance {
         Status::Ok
     }
 
-    fn variable(
+    /// The variable a value reference names in this FMU's interface; a variable a scene file
+    /// hides is refused exactly as one that does not exist.
+    pub fn variable(
         &self,
         function: &str,
         value_reference: u32,
         accepts: fn(&Kind) -> bool,
         type_name: &str,
     ) -> Result<&'static Variable, Status> {
-        match self.model.table.variable(value_reference) {
+        let visible = self
+            .model
+            .table
+            .variable(value_reference)
+            .filter(|v| self.scope.exposes(v.value_reference));
+        match visible {
             Some(var) if accepts(&var.kind) => Ok(var),
             Some(var) => Err(self.error(&format!(
                 "{function}: value reference {value_reference} is {}, not a {type_name} variable",
@@ -278,7 +302,7 @@ impl Instance {
             ))),
             None => Err(self.error(&format!(
                 "{function}: unknown value reference {value_reference}: {} has no variable with it",
-                self.model.table.model_identifier
+                self.name
             ))),
         }
     }
@@ -553,9 +577,11 @@ impl Instance {
             Ok(()) => {
                 scene.write_outputs(&mut self.values);
                 // The scenes check their states; this is the last line of defence: no NaN ever
-                // reaches the master silently.
+                // reaches the master silently. Outputs a scene file hides are not checked: the
+                // scene may skip computing them.
                 let bad = self.model.table.variables.iter().find(|v| {
                     v.causality == Causality::Output
+                        && self.scope.exposes(v.value_reference)
                         && !self.values.real(v.value_reference).is_finite()
                 });
                 if let Some(var) = bad {

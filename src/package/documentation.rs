@@ -1,7 +1,9 @@
 //! documentation/index.html: the model's equations and source (hand-written, per model) and its
-//! variables (generated from the same table as modelDescription.xml).
+//! variables (generated from the same table as modelDescription.xml). A scene file's page lists
+//! the variables it keeps, with its start values, and the values it fixes.
 
-use crate::interface::variable::{Causality, Kind, ModelTable};
+use crate::interface::variable::{Causality, Kind, ModelTable, Variable};
+use crate::scene_file::SceneFile;
 
 fn equations(model_identifier: &str) -> &'static str {
     match model_identifier {
@@ -19,65 +21,128 @@ fn escape(text: &str) -> String {
         .replace('>', "&gt;")
 }
 
-fn variable_rows(table: &ModelTable, causality: Causality) -> String {
+/// A value as the page shows it; an enumeration's item with the items it could have been.
+fn value_text(table: &ModelTable, var: &Variable, value: f64) -> String {
+    match var.kind {
+        Kind::Real { .. } => value.to_string(),
+        Kind::Integer { .. } => (value as i64).to_string(),
+        Kind::Enumeration { type_name, .. } => {
+            let enum_type = table.enum_type(type_name);
+            let all: Vec<&str> = enum_type
+                .map(|e| e.items.iter().map(|(n, _)| *n).collect())
+                .unwrap_or_default();
+            let item = enum_type.and_then(|e| e.item(value as i32)).unwrap_or("");
+            format!("{item} (of {})", all.join(", "))
+        }
+    }
+}
+
+fn table_start(var: &Variable) -> f64 {
+    match var.kind {
+        Kind::Real { start, .. } => start,
+        Kind::Integer { start, .. } | Kind::Enumeration { start, .. } => f64::from(start),
+    }
+}
+
+fn unit(var: &Variable) -> &'static str {
+    match var.kind {
+        Kind::Real { unit, .. } => unit,
+        _ => "",
+    }
+}
+
+/// One row per variable: name, value (none for outputs), unit, meaning.
+fn rows<'a>(
+    table: &ModelTable,
+    variables: impl Iterator<Item = &'a Variable>,
+    value: &dyn Fn(&Variable) -> f64,
+) -> String {
     let mut rows = String::new();
-    for v in table.variables.iter().filter(|v| v.causality == causality) {
-        let (start, unit) = match v.kind {
-            Kind::Real { start, unit, .. } => {
-                let start = if causality == Causality::Output {
-                    String::new()
-                } else {
-                    start.to_string()
-                };
-                (start, unit.to_string())
-            }
-            Kind::Integer { start, .. } => (start.to_string(), String::new()),
-            Kind::Enumeration { type_name, start } => {
-                let items = table.enum_type(type_name).map(|e| e.items).unwrap_or(&[]);
-                let all: Vec<&str> = items.iter().map(|(n, _)| *n).collect();
-                let default = table
-                    .enum_type(type_name)
-                    .and_then(|e| e.item(start))
-                    .unwrap_or("");
-                (format!("{default} (of {})", all.join(", ")), String::new())
-            }
+    for v in variables {
+        let shown = if v.causality == Causality::Output {
+            String::new()
+        } else {
+            value_text(table, v, value(v))
         };
         rows.push_str(&format!(
             "<tr><td><code>{}</code></td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
             escape(v.name),
-            escape(&start),
-            escape(&unit),
+            escape(&shown),
+            escape(unit(v)),
             escape(v.description)
         ));
     }
     rows
 }
 
-pub fn page(table: &ModelTable) -> String {
+fn section(title: &str, value_heading: &str, rows: &str) -> String {
+    if rows.is_empty() {
+        return String::new();
+    }
+    format!(
+        "<h2>{title}</h2>\n<table>\n<tr><th>name</th><th>{value_heading}</th><th>unit</th><th>meaning</th></tr>\n{rows}</table>\n"
+    )
+}
+
+/// Parameters, inputs and outputs among `variables`, each in its own table.
+fn sections(
+    table: &ModelTable,
+    variables: &[&Variable],
+    value: &dyn Fn(&Variable) -> f64,
+) -> String {
     let mut sections = String::new();
     for (title, causality) in [
         ("Parameters", Causality::Parameter),
         ("Inputs", Causality::Input),
         ("Outputs", Causality::Output),
     ] {
-        let rows = variable_rows(table, causality);
-        if !rows.is_empty() {
-            sections.push_str(&format!(
-                "<h2>{title}</h2>\n<table>\n<tr><th>name</th><th>default</th><th>unit</th><th>meaning</th></tr>\n{rows}</table>\n"
-            ));
-        }
+        let of_kind = variables
+            .iter()
+            .copied()
+            .filter(|v| v.causality == causality);
+        sections.push_str(&section(title, "default", &rows(table, of_kind, value)));
     }
+    sections
+}
+
+fn html(title: &str, description: &str, body: &str) -> String {
     format!(
-        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>{id}</title>\n<style>body{{font-family:sans-serif;max-width:50em;margin:auto}}table{{border-collapse:collapse}}td,th{{border:1px solid #ccc;padding:2px 6px;text-align:left}}</style></head>\n<body>\n<h1>{id}</h1>\n<p>{description}</p>\n{equations}\n{sections}</body></html>\n",
-        id = table.model_identifier,
-        description = escape(table.description),
-        equations = equations(table.model_identifier),
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>{title}</title>\n<style>body{{font-family:sans-serif;max-width:50em;margin:auto}}table{{border-collapse:collapse}}td,th{{border:1px solid #ccc;padding:2px 6px;text-align:left}}</style></head>\n<body>\n<h1>{title}</h1>\n<p>{description}</p>\n{body}</body></html>\n",
+        description = escape(description),
     )
+}
+
+pub fn page(table: &ModelTable) -> String {
+    let variables: Vec<&Variable> = table.variables.iter().collect();
+    let body = format!(
+        "{}\n{}",
+        equations(table.model_identifier),
+        sections(table, &variables, &table_start)
+    );
+    html(table.model_identifier, table.description, &body)
+}
+
+/// A scene file's page: what it keeps (start values from the file), what it fixes, then the
+/// model's equations; the file itself is in resources/scene.toml.
+pub fn scene_page(scene: &SceneFile) -> String {
+    let table = scene.model.table;
+    let value = |v: &Variable| scene.values.real(v.value_reference);
+    let fixed: Vec<&Variable> = scene.fixed().into_iter().map(|(v, _)| v).collect();
+    let body = format!(
+        "<p>A scene of <code>{model}</code>: only the variables below are in the interface; every other \
+         parameter and input is fixed at the value listed under <i>Fixed values</i>. The scene file is \
+         <code>resources/scene.toml</code>.</p>\n{kept}{fixed}<h2>Model {model}</h2>\n{equations}\n",
+        model = table.model_identifier,
+        kept = sections(table, &scene.kept_variables(), &value),
+        fixed = section("Fixed values", "value", &rows(table, fixed.into_iter(), &value)),
+        equations = equations(table.model_identifier),
+    );
+    html(&scene.name, &scene.description, &body)
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{equations, page};
+    use super::{equations, page, scene_page};
 
     /// Every model ships a written description, and its page lists every variable.
     #[test]
@@ -97,5 +162,19 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A scene's page shows each kept variable once with the file's value, and each fixed one.
+    #[test]
+    fn a_scene_page_lists_kept_and_fixed_values() {
+        let text = "name = \"S\"\nmodel = \"LongitudinalFriction\"\nlaw = \"coulomb\"\nsolver = \"rk4\"\ntunable = [\"vc\"]\noutputs = [\"FT_mean\"]\n[parameters]\nvc = 0.146\nkt = 3e4\n[experiment]\nstart = 0\nstop = 1e-3\nstep = 1e-5\n";
+        let scene = crate::scene_file::parse("s.toml", text).unwrap();
+        let html = scene_page(&scene);
+        assert!(html.contains("<tr><td><code>vc</code></td><td>0.146</td>"));
+        assert!(html.contains("<tr><td><code>kt</code></td><td>30000</td>"));
+        assert!(html
+            .contains("<tr><td><code>law</code></td><td>coulomb (of coulomb, dahl, lugre)</td>"));
+        assert!(html.contains("<h2>Fixed values</h2>") && html.contains("<code>FT_mean</code>"));
+        assert!(!html.contains("<code>FT</code>"));
     }
 }

@@ -1,0 +1,293 @@
+//! The one modelDescription.xml writer: full models (written by `build.rs`, which includes this
+//! module with `#[path]`) and the trimmed interfaces of scene files (written by the library when
+//! it packs one, and again at fmi2Instantiate to check its GUID) come from the same code.
+//!
+//! Like `src/interface`, it depends only on that module (as `crate::interface`), serde and
+//! quick-xml, so it compiles the same in both places.
+
+mod xml;
+
+use crate::interface::variable::{Causality, EnumType, Kind, ModelTable, Variable, UNITS};
+use xml::*;
+
+/// The DefaultExperiment; `tolerance` is left out of the XML when None.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Experiment {
+    pub start: f64,
+    pub stop: f64,
+    pub step: f64,
+    pub tolerance: Option<f64>,
+}
+
+/// Everything one modelDescription.xml says: the variables it lists (a whole table, or the part
+/// a scene file keeps) with their start values, and the model's name and experiment.
+pub struct Interface<'a> {
+    pub model_identifier: &'a str,
+    pub description: &'a str,
+    /// In the order ModelVariables lists them (their 1-based indices are used by ModelStructure).
+    pub variables: &'a [&'a Variable],
+    /// Start values that replace the table's, by value reference.
+    pub starts: &'a [(u32, f64)],
+    /// The model's enumeration types; the XML declares those the variables use.
+    pub enum_types: &'a [EnumType],
+    pub experiment: Experiment,
+    /// canInterpolateInputs, and first output derivatives (maxOutputDerivativeOrder = 1).
+    pub interpolates_inputs: bool,
+}
+
+impl<'a> Interface<'a> {
+    /// A whole model table, as `build.rs` writes it.
+    pub fn full(table: &'a ModelTable, variables: &'a [&'a Variable]) -> Self {
+        let e = table.default_experiment;
+        Interface {
+            model_identifier: table.model_identifier,
+            description: table.description,
+            variables,
+            starts: &[],
+            enum_types: table.enum_types,
+            experiment: Experiment {
+                start: e.start_time,
+                stop: e.stop_time,
+                step: e.step_size,
+                tolerance: Some(e.tolerance),
+            },
+            interpolates_inputs: crate::interface::interpolates_inputs(table),
+        }
+    }
+
+    /// The XML and its GUID: the GUID hashes the XML written with an empty GUID, then takes its
+    /// place, so an FMU's binary can recompute it from what it describes.
+    pub fn write(&self) -> (String, String) {
+        let guid = guid_of(&to_xml(&self.model_description("")));
+        let xml = to_xml(&self.model_description(&guid));
+        (guid, xml)
+    }
+
+    fn start(&self, v: &Variable) -> Option<f64> {
+        self.starts
+            .iter()
+            .find(|(vr, _)| *vr == v.value_reference)
+            .map(|&(_, x)| x)
+    }
+
+    fn scalar_variable<'b>(&'b self, v: &'b Variable) -> ScalarVariable<'b> {
+        let start = self.start(v);
+        let kind = match v.kind {
+            Kind::Real {
+                start: table_start,
+                unit,
+                min,
+                max,
+            } => KindXml::Real {
+                unit: (!unit.is_empty()).then_some(unit),
+                // Calculated outputs may not carry a start value.
+                start: (v.causality != Causality::Output)
+                    .then(|| number(start.unwrap_or(table_start))),
+                min: finite(min),
+                max: finite(max),
+            },
+            Kind::Integer {
+                start: table_start,
+                min,
+                max,
+            } => KindXml::Integer {
+                start: start.map_or(table_start, |x| x as i32),
+                min,
+                max,
+            },
+            Kind::Enumeration {
+                type_name,
+                start: table_start,
+            } => KindXml::Enumeration {
+                declared_type: type_name,
+                start: start.map_or(table_start, |x| x as i32),
+            },
+        };
+        ScalarVariable {
+            name: v.name,
+            value_reference: v.value_reference,
+            description: v.description,
+            causality: causality(v.causality),
+            variability: variability(v.variability),
+            kind,
+        }
+    }
+
+    fn uses_unit(&self, name: &str) -> bool {
+        self.variables
+            .iter()
+            .any(|v| matches!(v.kind, Kind::Real { unit, .. } if unit == name))
+    }
+
+    fn uses_type(&self, name: &str) -> bool {
+        self.variables
+            .iter()
+            .any(|v| matches!(v.kind, Kind::Enumeration { type_name, .. } if type_name == name))
+    }
+
+    fn model_structure(&self) -> ModelStructure {
+        // ModelVariables indices are 1-based, in list order. A dependency on an input the list
+        // leaves out (a scene file's hidden input, held at its value) is no dependency.
+        let index_of = |vr: u32| {
+            self.variables
+                .iter()
+                .position(|v| v.value_reference == vr)
+                .map(|i| i + 1)
+        };
+        let outputs: Vec<(usize, &Variable)> = self
+            .variables
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| v.causality == Causality::Output)
+            .map(|(i, v)| (i + 1, *v))
+            .collect();
+        ModelStructure {
+            outputs: Unknowns {
+                unknowns: outputs
+                    .iter()
+                    .map(|&(index, v)| Unknown {
+                        index,
+                        dependencies: Some(
+                            v.depends_on
+                                .iter()
+                                .filter_map(|&vr| index_of(vr))
+                                .map(|i| i.to_string())
+                                .collect::<Vec<_>>()
+                                .join(" "),
+                        ),
+                    })
+                    .collect(),
+            },
+            // Every output is calculated at initialisation from all parameters and inputs.
+            initial_unknowns: Unknowns {
+                unknowns: outputs
+                    .iter()
+                    .map(|&(index, _)| Unknown {
+                        index,
+                        dependencies: None,
+                    })
+                    .collect(),
+            },
+        }
+    }
+
+    fn model_description<'b>(&'b self, guid: &'b str) -> ModelDescription<'b> {
+        ModelDescription {
+            fmi_version: "2.0",
+            model_name: self.model_identifier,
+            guid,
+            description: self.description,
+            generation_tool: concat!("friction-fmu ", env!("CARGO_PKG_VERSION")),
+            naming: "flat",
+            event_indicators: 0,
+            co_simulation: CoSimulation {
+                model_identifier: self.model_identifier,
+                needs_execution_tool: false,
+                variable_step: true,
+                interpolate_inputs: self.interpolates_inputs,
+                max_output_derivative_order: self.interpolates_inputs.into(),
+                asynchronous: false,
+                once_per_process: false,
+                no_memory_functions: true,
+                get_set_state: true,
+                serialize_state: true,
+                directional_derivative: false,
+            },
+            units: UnitDefinitions {
+                units: UNITS
+                    .iter()
+                    .filter(|u| self.uses_unit(u.name))
+                    .map(|u| UnitXml {
+                        name: u.name,
+                        base: BaseUnit {
+                            kg: u.kg,
+                            m: u.m,
+                            s: u.s,
+                            rad: u.rad,
+                            factor: (u.name == "%").then_some(0.01),
+                        },
+                    })
+                    .collect(),
+            },
+            types: TypeDefinitions {
+                types: self
+                    .enum_types
+                    .iter()
+                    .filter(|e| self.uses_type(e.name))
+                    .map(|e| SimpleType {
+                        name: e.name,
+                        enumeration: EnumerationType {
+                            items: e
+                                .items
+                                .iter()
+                                .enumerate()
+                                .map(|(i, (name, description))| Item {
+                                    name,
+                                    value: i as i32 + 1,
+                                    description,
+                                })
+                                .collect(),
+                        },
+                    })
+                    .collect(),
+            },
+            log_categories: LogCategories {
+                categories: crate::interface::variable::LOG_CATEGORIES
+                    .iter()
+                    .map(|&(name, description)| Category { name, description })
+                    .collect(),
+            },
+            default_experiment: DefaultExperimentXml {
+                start_time: self.experiment.start,
+                stop_time: self.experiment.stop,
+                tolerance: self.experiment.tolerance,
+                step_size: self.experiment.step,
+            },
+            variables: ModelVariables {
+                variables: self
+                    .variables
+                    .iter()
+                    .map(|v| self.scalar_variable(v))
+                    .collect(),
+            },
+            structure: self.model_structure(),
+        }
+    }
+}
+
+/// FNV-1a, twice with different offsets: a stable 128-bit content hash without a dependency.
+pub fn guid_of(text: &str) -> String {
+    let fnv = |offset: u64| {
+        text.bytes().fold(offset, |h, b| {
+            (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+        })
+    };
+    let (a, b) = (fnv(0xcbf2_9ce4_8422_2325), fnv(0x6c62_272e_07bb_0142));
+    format!(
+        "{{{:08x}-{:04x}-{:04x}-{:04x}-{:012x}}}",
+        a >> 32,
+        (a >> 16) & 0xffff,
+        a & 0xffff,
+        b >> 48,
+        b & 0xffff_ffff_ffff
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Interface;
+    use crate::interface::variable::Variable;
+
+    /// Oracle: the XML and GUID `build.rs` wrote (committed in modelDescription/): the library's
+    /// writer, which also writes scene files, gives the same bytes for a whole table.
+    #[test]
+    fn library_writes_the_full_models_as_the_build_script_did() {
+        for table in crate::interface::MODELS {
+            let variables: Vec<&Variable> = table.variables.iter().collect();
+            let (guid, xml) = Interface::full(table, &variables).write();
+            let id = table.model_identifier;
+            assert_eq!(Some(xml.as_str()), crate::package::model_description(id));
+            assert_eq!(Some(guid.as_str()), crate::fmi2::guid(id));
+        }
+    }
+}

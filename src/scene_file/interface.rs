@@ -1,0 +1,71 @@
+//! What a scene file's FMU shows: its modelDescription.xml (from the one writer), its GUID, the
+//! [`Scope`] its instances run in, and the values it fixes.
+
+use super::SceneFile;
+use crate::interface::variable::{Causality, Kind, Variable};
+use crate::model_description::Interface;
+use crate::scenes::Scope;
+
+impl SceneFile {
+    /// The kept variables, in table order.
+    pub fn kept_variables(&self) -> Vec<&'static Variable> {
+        self.model
+            .table
+            .variables
+            .iter()
+            .filter(|v| self.kept.contains(&v.value_reference))
+            .collect()
+    }
+
+    /// Parameters and inputs the scene hides, with the value each is fixed at.
+    pub fn fixed(&self) -> Vec<(&'static Variable, f64)> {
+        self.model
+            .table
+            .variables
+            .iter()
+            .filter(|v| v.causality != Causality::Output && !self.kept.contains(&v.value_reference))
+            .map(|v| (v, self.values.real(v.value_reference)))
+            .collect()
+    }
+
+    /// A value as a person reads it: enumerations by item name.
+    pub fn value_text(&self, var: &Variable) -> String {
+        match var.kind {
+            Kind::Enumeration { .. } => self.values.item(var.value_reference).to_string(),
+            _ => self.values.real(var.value_reference).to_string(),
+        }
+    }
+
+    /// The trimmed modelDescription.xml and its GUID (the hash `build.rs` uses for full models).
+    pub fn model_description(&self) -> (String, String) {
+        let variables = self.kept_variables();
+        let starts: Vec<(u32, f64)> = variables
+            .iter()
+            .filter(|v| v.causality != Causality::Output)
+            .map(|v| (v.value_reference, self.values.real(v.value_reference)))
+            .collect();
+        Interface {
+            model_identifier: &self.name,
+            description: &self.description,
+            variables: &variables,
+            starts: &starts,
+            enum_types: self.model.table.enum_types,
+            experiment: self.experiment,
+            interpolates_inputs: crate::interface::interpolates_inputs(self.model.table),
+        }
+        .write()
+    }
+
+    /// What an instance of this FMU hides: every variable not kept.
+    pub fn scope(&self) -> Scope {
+        Scope::hiding(
+            self.model
+                .table
+                .variables
+                .iter()
+                .map(|v| v.value_reference)
+                .filter(|vr| !self.kept.contains(vr))
+                .collect(),
+        )
+    }
+}

@@ -1,0 +1,262 @@
+//! Scene files: a valid one read back value by value, and one test per refusal, each checking
+//! that the message names the file, the key and what was expected.
+
+use super::parse;
+use crate::interface::transverse::vr;
+use crate::interface::variable::Causality;
+
+const FIG4A: &str = r#"
+name = "Fig4a"
+model = "TransverseFriction"
+description = "no vibration"
+law = "split"
+solver = "rk4"
+tunable = ["vd", "kt"]
+inputs = []
+outputs = ["FFx", "Fd"]
+[parameters]
+va = 0.0
+vd = 0.5e-3
+steps_per_period = 400
+body = "free"
+[experiment]
+start = 0.0
+stop = 0.015
+step = 1e-5
+"#;
+
+/// FIG4A with `from` replaced by `to` (which must occur).
+fn variant(from: &str, to: &str) -> String {
+    assert!(FIG4A.contains(from), "{from}");
+    FIG4A.replacen(from, to, 1)
+}
+
+fn refused(text: &str, fragments: &[&str]) {
+    let message = match parse("scenes/x.toml", text) {
+        Ok(_) => panic!("accepted: {text}"),
+        Err(message) => message,
+    };
+    assert!(message.starts_with("scenes/x.toml"), "{message}");
+    for fragment in fragments {
+        assert!(
+            message.contains(fragment),
+            "{fragment:?} not in {message:?}"
+        );
+    }
+}
+
+/// Oracle: the file's own values and the model table's defaults.
+#[test]
+fn a_valid_file_gives_its_values_and_keeps_what_it_lists() {
+    let scene = parse("fig4a.toml", FIG4A).unwrap();
+    assert_eq!(scene.name, "Fig4a");
+    assert_eq!(scene.model.table.model_identifier, "TransverseFriction");
+    assert_eq!(scene.values.real(vr::VA), 0.0);
+    assert_eq!(scene.values.real(vr::VD), 0.5e-3);
+    assert_eq!(scene.values.integer(vr::STEPS_PER_PERIOD), 400);
+    assert_eq!(scene.values.item(vr::SOLVER), "rk4");
+    assert_eq!(scene.values.item(vr::SLIP_LAW), "split");
+    assert_eq!(scene.values.real(vr::KT), 6.286e7);
+    assert_eq!(scene.kept, vec![vr::KT, vr::VD, vr::FFX, vr::FD]);
+    assert_eq!(scene.experiment.stop, 0.015);
+    assert_eq!(scene.experiment.tolerance, None);
+    let scope = scene.scope();
+    assert!(scope.exposes(vr::VD) && scope.exposes(vr::FFX));
+    assert!(scope.fixes(vr::VA) && scope.fixes(vr::VD_IN) && scope.fixes(vr::FF));
+    // Every variable is either kept or fixed, outputs aside.
+    let fixed = scene.fixed();
+    for v in scene.model.table.variables {
+        let in_fixed = fixed.iter().any(|(f, _)| f.name == v.name);
+        let kept = scene.kept.contains(&v.value_reference);
+        assert!(
+            kept != in_fixed || v.causality == Causality::Output,
+            "{}",
+            v.name
+        );
+    }
+}
+
+/// Oracle: the FMI rule that the GUID identifies the XML; the XML lists exactly the kept
+/// variables, with the file's start values and experiment.
+#[test]
+fn the_trimmed_xml_lists_the_kept_variables_and_hashes_to_its_guid() {
+    let scene = parse("fig4a.toml", FIG4A).unwrap();
+    let (guid, xml) = scene.model_description();
+    assert_eq!(xml.matches("<ScalarVariable ").count(), 4);
+    for name in ["vd", "kt", "FFx", "Fd"] {
+        assert!(xml.contains(&format!("name=\"{name}\"")), "{name}");
+    }
+    assert!(xml.contains("start=\"5e-4\""));
+    assert!(!xml.contains("name=\"va\"") && !xml.contains("SlipLaw"));
+    assert!(xml.contains("stopTime=\"0.015\"") && !xml.contains("tolerance="));
+    assert!(xml.contains("modelIdentifier=\"Fig4a\""));
+    // Fd depends on vd_in in the full model; hidden, it is no dependency here.
+    assert!(xml.contains("<Unknown index=\"4\" dependencies=\"\"/>"));
+    let blank = xml.replace(&guid, "");
+    assert_eq!(crate::model_description::guid_of(&blank), guid);
+    let other = parse("fig4a.toml", &variant("vd = 0.5e-3", "vd = 0.6e-3")).unwrap();
+    assert_ne!(other.model_description().0, guid);
+}
+
+#[test]
+fn unknown_keys_are_refused() {
+    refused(
+        &variant("solver = \"rk4\"", "solver = \"rk4\"\ncolour = 1"),
+        &["line 7", "colour", "unknown field", "expected one of"],
+    );
+    refused(
+        &variant("step = 1e-5", "step = 1e-5\nstepSize = 1e-5"),
+        &["stepSize", "unknown field"],
+    );
+}
+
+#[test]
+fn missing_and_mistyped_keys_are_refused() {
+    refused(&variant("law = \"split\"\n", ""), &["missing field `law`"]);
+    refused(
+        &variant("law = \"split\"", "law = 3"),
+        &["law = 3", "expected a string"],
+    );
+    refused(
+        &variant("vd = 0.5e-3", "vd = \"fast\""),
+        &["key `parameters.vd`", "vd = \"fast\"", "expected a number"],
+    );
+    refused(
+        &variant("steps_per_period = 400", "steps_per_period = 400.5"),
+        &["key `parameters.steps_per_period`", "expected an integer"],
+    );
+    refused(
+        &variant("body = \"free\"", "body = 2"),
+        &["key `parameters.body`", "expected an item name"],
+    );
+}
+
+#[test]
+fn unknown_models_and_names_are_refused() {
+    refused(
+        &variant("\"TransverseFriction\"", "\"Transverse\""),
+        &[
+            "key `model`",
+            "unknown model \"Transverse\"",
+            "expected one of LongitudinalFriction, TransverseFriction, DryFrictionOscillator",
+        ],
+    );
+    refused(
+        &variant("va = 0.0", "vx = 0.0"),
+        &[
+            "key `parameters.vx`",
+            "no parameter or input \"vx\"",
+            "expected one of",
+            "vd_in",
+        ],
+    );
+    refused(
+        &variant("[\"vd\", \"kt\"]", "[\"vd\", \"FF\"]"),
+        &[
+            "key `tunable`",
+            "\"FF\" is not a parameter",
+            "expected one of",
+        ],
+    );
+    refused(
+        &variant("[\"FFx\", \"Fd\"]", "[\"FFx\", \"vd\"]"),
+        &["key `outputs`", "\"vd\" is not an output"],
+    );
+    refused(
+        &variant("[\"FFx\", \"Fd\"]", "[]"),
+        &["key `outputs`", "expected at least one output"],
+    );
+    refused(
+        &variant("[\"vd\", \"kt\"]", "[\"vd\", \"vd\"]"),
+        &["key `tunable`", "listed twice"],
+    );
+    refused(
+        &variant("va = 0.0", "FF = 0.0"),
+        &["key `parameters.FF`", "expected a parameter or an input"],
+    );
+    refused(
+        &variant("va = 0.0", "solver = \"rk4\""),
+        &["key `parameters.solver`", "top-level key `solver`"],
+    );
+    refused(
+        &variant("name = \"Fig4a\"", "name = \"Fig 4a\""),
+        &["key `name`", "expected a letter or _"],
+    );
+    refused(
+        &variant("name = \"Fig4a\"", "name = \"TransverseFriction\""),
+        &["key `name`", "full model"],
+    );
+}
+
+#[test]
+fn values_out_of_range_and_unknown_items_are_refused() {
+    refused(
+        &variant("va = 0.0", "eta = 1.5"),
+        &[
+            "key `parameters.eta`",
+            "eta = 1.5 is out of range",
+            "expected 0 <= eta <= 1",
+        ],
+    );
+    refused(
+        &variant("va = 0.0", "kt = 0"),
+        &["key `parameters.kt`", "expected kt > 0"],
+    );
+    refused(
+        &variant("law = \"split\"", "law = \"viscous\""),
+        &[
+            "key `law`",
+            "\"viscous\" is not an item of SlipLaw",
+            "expected one of split, total",
+        ],
+    );
+    refused(
+        &variant("solver = \"rk4\"", "solver = \"euler\""),
+        &[
+            "key `solver`",
+            "expected one of dopri5, rk4, two_phase, radau5, exponential",
+        ],
+    );
+    refused(
+        &variant("body = \"free\"", "body = \"floating\""),
+        &["key `parameters.body`", "expected one of free, held"],
+    );
+}
+
+#[test]
+fn an_input_the_configuration_reads_must_be_kept() {
+    refused(
+        &variant("body = \"free\"", "drive_source = \"input\""),
+        &[
+            "key `inputs`",
+            "drive_source = input reads vd_in",
+            "expected inputs to include \"vd_in\"",
+        ],
+    );
+    refused(
+        &variant("[\"vd\", \"kt\"]", "[\"vd\", \"drive_source\"]"),
+        &["key `inputs`", "drive_source is tunable", "\"vd_in\""],
+    );
+    let kept = variant("body = \"free\"", "drive_source = \"input\"")
+        .replace("inputs = []", "inputs = [\"vd_in\"]");
+    assert!(parse("x.toml", &kept).is_ok());
+}
+
+#[test]
+fn a_bad_experiment_is_refused() {
+    refused(
+        &variant("step = 1e-5", "step = 0"),
+        &["key `experiment.step`", "expected 0 < step"],
+    );
+    refused(
+        &variant("stop = 0.015", "stop = 0.0"),
+        &["key `experiment.stop`", "expected a finite time > start"],
+    );
+    refused(
+        &variant("step = 1e-5", "step = 1e-5\ntolerance = -1"),
+        &[
+            "key `experiment.tolerance`",
+            "expected a finite tolerance > 0",
+        ],
+    );
+}
