@@ -59,6 +59,7 @@ pub struct Params {
 
 impl Params {
     /// The velocity of the contact point M carried by the support: eta * (0, yp').
+    #[inline]
     pub fn support_velocity(&self, t: f64) -> Vector2<f64> {
         // The phase from t*f's fractional part keeps cos accurate however long the run.
         Vector2::new(0.0, self.eta * self.va * (TAU * (t * self.f).fract()).cos())
@@ -69,6 +70,7 @@ impl Params {
         self.va / (TAU * self.f) * (TAU * (t * self.f).fract()).sin()
     }
 
+    #[inline]
     pub fn contact(&self, t: f64, y: &[f64]) -> Contact {
         let v_body = if self.held {
             Vector2::zeros()
@@ -100,6 +102,7 @@ impl Ode for Equations<'_> {
         DIM
     }
 
+    #[inline]
     fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let p = self.p;
         let c = p.contact(t, y);
@@ -122,6 +125,7 @@ impl Ode for Equations<'_> {
 }
 
 impl Switching for Equations<'_> {
+    #[inline]
     fn switches(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
         let c = self.p.contact(t, y);
         let vr = c.v1 + c.v2;
