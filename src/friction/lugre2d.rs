@@ -101,7 +101,12 @@ impl LuGre2d {
     #[inline]
     pub fn slip(&self, law: SlipLaw, v1: f64, v2: f64) -> f64 {
         match law {
-            SlipLaw::Split => self.slip_rate(v1) + self.slip_rate(v2),
+            // |v1| kt/d1 + |v2| kt/d2 over one division.
+            SlipLaw::Split => {
+                let d1 = self.fc + (self.fs - self.fc) * self.stribeck(v1);
+                let d2 = self.fc + (self.fs - self.fc) * self.stribeck(v2);
+                self.kt * (v1.abs() * d2 + v2.abs() * d1) / (d1 * d2)
+            }
             SlipLaw::Total => self.slip_rate(v1 + v2),
         }
     }

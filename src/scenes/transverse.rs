@@ -20,6 +20,7 @@ use crate::friction::lugre2d::{Contact, LuGre2d, SlipLaw};
 use crate::interface::transverse::vr;
 use crate::interface::values::ValueSet;
 use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
+use crate::solve::phase::cos_turns;
 use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
 use crate::solve::{within_step_budget, Integrator, Ode, Work, MAX_DIM};
@@ -61,8 +62,8 @@ impl Params {
     /// The velocity of the contact point M carried by the support: eta * (0, yp').
     #[inline]
     pub fn support_velocity(&self, t: f64) -> Vector2<f64> {
-        // The phase from t*f's fractional part keeps cos accurate however long the run.
-        Vector2::new(0.0, self.eta * self.va * (TAU * (t * self.f).fract()).cos())
+        // The phase in turns keeps cos accurate however long the run.
+        Vector2::new(0.0, self.eta * self.va * cos_turns(t * self.f))
     }
 
     /// Support displacement yp = u0 sin(wt), u0 = va/w.
@@ -111,10 +112,12 @@ impl Ode for Equations<'_> {
             dydt[LAMBDA] = self.vd;
         } else {
             let fd = p.drive_force(y, self.vd);
+            // One division for both accelerations.
+            let inv_m = 1.0 / p.m;
             dydt[X] = y[VX];
-            dydt[VX] = (fd - c.ffx()) / p.m;
+            dydt[VX] = (fd - c.ffx()) * inv_m;
             dydt[Y] = y[VY];
-            dydt[VY] = c.ffy() / p.m;
+            dydt[VY] = c.ffy() * inv_m;
             dydt[LAMBDA] = self.vd - y[VX];
         }
         dydt[ZX] = c.zdot.x;
