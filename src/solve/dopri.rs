@@ -198,7 +198,7 @@ impl Dopri5 {
     ) {
         let n = ode.dim().min(MAX_DIM);
         tr.k[0] = *k1;
-        // Whole fixed-length rows (the states past n stay 0) so the sums vectorise.
+        // Whole fixed-length rows (the states past n stay 0): loops of constant length.
         let mut y0 = [0.0; MAX_DIM];
         y0[..n].copy_from_slice(&y[..n]);
         let mut tmp = [0.0; MAX_DIM];
