@@ -6,26 +6,14 @@
 //!
 //! KNOB is a tolerance for dopri5/radau5 and steps per period for rk4/two_phase/exponential. Output:
 //! `slip_law,kt_factor,solver,knob,FFx_mean,cpu_seconds,rhs_evaluations,steps,rejected`.
-//! The clock is the process CPU time as /proc/self/stat reports it (the run is single-threaded).
+//! The clock is the CPU time of the running thread (`fmi2::cpu_clock`).
 
+use friction_fmu::fmi2::cpu_clock::time_cpu;
 use friction_fmu::interface::transverse::{vr, INITIAL, SLIP_LAW, SOLVER, TABLE};
 use friction_fmu::interface::values::ValueSet;
 use friction_fmu::scenes::transverse::Transverse;
 use friction_fmu::scenes::Scene;
 use std::process::ExitCode;
-use std::time::Instant;
-
-/// utime + stime of this process in seconds (fields 14 and 15 of /proc/self/stat), or None off
-/// Linux, where the wall clock is used instead.
-fn cpu_seconds() -> Option<f64> {
-    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
-    // The command name (field 2) may contain spaces; fields after it are space-separated.
-    let rest = &stat[stat.rfind(')')? + 2..];
-    let fields: Vec<&str> = rest.split(' ').collect();
-    let ticks: f64 = fields.get(11)?.parse::<f64>().ok()? + fields.get(12)?.parse::<f64>().ok()?;
-    // CLK_TCK is 100 on every Linux configuration we run on.
-    Some(ticks / 100.0)
-}
 
 fn run(args: &[String]) -> Result<(), String> {
     if args.len() < 5 {
@@ -61,16 +49,15 @@ fn run(args: &[String]) -> Result<(), String> {
         }
         let mut scene = Transverse::new(&v, 0.0)?;
         let steps = (t_end / comm).round() as u64;
-        let (cpu0, wall0) = (cpu_seconds(), Instant::now());
-        for i in 0..steps {
-            // The communication point from its index, as a master computes it.
-            let h = (i + 1) as f64 * comm - scene.time();
-            scene.do_step(h, &v)?;
-        }
-        let seconds = match (cpu0, cpu_seconds()) {
-            (Some(a), Some(b)) if b - a > 0.05 => b - a,
-            _ => wall0.elapsed().as_secs_f64(),
-        };
+        let (result, seconds) = time_cpu(|| -> Result<(), String> {
+            for i in 0..steps {
+                // The communication point from its index, as a master computes it.
+                let h = (i + 1) as f64 * comm - scene.time();
+                scene.do_step(h, &v)?;
+            }
+            Ok(())
+        });
+        result?;
         let w = scene.work;
         println!(
             "{slip},{kt_factor},{solver},{knob:e},{:.15e},{seconds:.6},{},{},{}",

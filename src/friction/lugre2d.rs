@@ -70,6 +70,7 @@ impl LuGre2d {
     /// exp(-(v/vs)^2), the Stribeck weight of g and ht. Beyond (v/vs)^2 = 745 exp underflows to
     /// 0 anyway; returning 0 there (tested without a division) skips libm's slow underflow path,
     /// which is where sliding spends almost all its time (v is hundreds of vs).
+    #[inline]
     fn stribeck(&self, v: f64) -> f64 {
         let vs2 = self.vs * self.vs;
         if v * v < 745.0 * vs2 {
@@ -91,25 +92,34 @@ impl LuGre2d {
 
     /// Slip rate |v|/g(v) (1/s) of eq. 3, written with one division: it runs in every
     /// right-hand side of scene T.
+    #[inline]
     pub fn slip_rate(&self, v: f64) -> f64 {
         v.abs() * self.kt / (self.fc + (self.fs - self.fc) * self.stribeck(v))
     }
 
     /// Slip rate of the bristle for the radial rates v1 (body) and v2 (support).
+    #[inline]
     pub fn slip(&self, law: SlipLaw, v1: f64, v2: f64) -> f64 {
         match law {
-            SlipLaw::Split => self.slip_rate(v1) + self.slip_rate(v2),
+            // |v1| kt/d1 + |v2| kt/d2 over one division.
+            SlipLaw::Split => {
+                let d1 = self.fc + (self.fs - self.fc) * self.stribeck(v1);
+                let d2 = self.fc + (self.fs - self.fc) * self.stribeck(v2);
+                self.kt * (v1.abs() * d2 + v2.abs() * d1) / (d1 * d2)
+            }
             SlipLaw::Total => self.slip_rate(v1 + v2),
         }
     }
 
     /// FF = kt s + ht(vr) sdot + hv vr (eq. 2).
+    #[inline]
     pub fn force(&self, s: f64, sdot: f64, vr: f64) -> f64 {
         self.kt * s + self.ht(vr) * sdot + self.hv * vr
     }
 
     /// The contact for bristle `z`, body velocity `v_body` and velocity `v_m` of the support point
     /// M (eta times the support's): the continuous-time law of SPEC.md, Scene T.
+    #[inline]
     pub fn contact(
         &self,
         law: SlipLaw,
@@ -137,6 +147,7 @@ impl LuGre2d {
 
 /// The unit vector of `z`; for `z = 0` the one the bristle is about to take, along the relative
 /// velocity `w` (so the force at s = 0 is the damping of 1D LuGre, -(ht + hv) w); +x if both vanish.
+#[inline]
 pub fn direction(z: Vector2<f64>, w: Vector2<f64>) -> Vector2<f64> {
     let s = z.norm();
     if s > 0.0 {

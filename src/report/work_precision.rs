@@ -9,10 +9,10 @@
 
 use super::progress::Progress;
 use super::svg::{Plot, Series};
+use crate::fmi2::cpu_clock::time_cpu;
 use crate::solve::Work;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
 
 /// How a solver's accuracy is chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -73,26 +73,35 @@ pub struct Study {
     pub rows: Vec<Row>,
 }
 
-/// Short runs are repeated until this much time has passed, and the fastest repeat is kept, so
-/// timer resolution and one-off stalls do not show in the table.
-const MIN_TIMED: Duration = Duration::from_millis(50);
-const MAX_REPEATS: u32 = 20;
+/// Each run is repeated until this much CPU time has passed (at least MIN_REPEATS, at most
+/// MAX_REPEATS times) and the median is kept: the thread's own CPU time does not count what other
+/// processes take of a shared core, and the median drops the odd stall either way.
+const MIN_TIMED: f64 = 0.05;
+const MIN_REPEATS: usize = 3;
+const MAX_REPEATS: usize = 21;
 
 fn timed(case: &Case, setting: &Setting) -> (Result<(f64, Work), String>, f64) {
-    let started = Instant::now();
-    let mut best = f64::INFINITY;
-    let mut result;
-    let mut repeats = 0;
+    let mut times = Vec::with_capacity(MAX_REPEATS);
+    let mut total = 0.0;
     loop {
-        let t = Instant::now();
-        result = (case.run)(setting);
-        best = best.min(t.elapsed().as_secs_f64());
-        repeats += 1;
-        if result.is_err() || started.elapsed() >= MIN_TIMED || repeats >= MAX_REPEATS {
-            break;
+        let (result, seconds) = time_cpu(|| (case.run)(setting));
+        times.push(seconds);
+        total += seconds;
+        let enough = times.len() >= MIN_REPEATS && total >= MIN_TIMED;
+        if result.is_err() || enough || times.len() >= MAX_REPEATS {
+            return (result, median(&mut times));
         }
     }
-    (result, best)
+}
+
+fn median(times: &mut [f64]) -> f64 {
+    times.sort_by(f64::total_cmp);
+    let mid = times.len() / 2;
+    if times.len() % 2 == 1 {
+        times[mid]
+    } else {
+        0.5 * (times[mid - 1] + times[mid])
+    }
 }
 
 pub fn study(case: &Case, progress: &mut Progress) -> Result<Study, String> {
@@ -153,7 +162,7 @@ pub fn markdown(case: &Case, study: &Study) -> String {
     );
     let _ = writeln!(
         s,
-        "| solver | step or tolerance | rel. error of {} | time (s) | RHS evaluations | steps | rejected |",
+        "| solver | step or tolerance | rel. error of {} | CPU time (s) | RHS evaluations | steps | rejected |",
         case.quantity
     );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|");
@@ -177,7 +186,7 @@ pub fn markdown(case: &Case, study: &Study) -> String {
     }
     let _ = writeln!(
         s,
-        "\nTime: the fastest of repeated single-threaded runs (wall clock of one core, the process otherwise idle)."
+        "\nCPU time: the median over repeated runs of the CPU time of the thread running them."
     );
     if study
         .rows
@@ -193,7 +202,7 @@ pub fn markdown(case: &Case, study: &Study) -> String {
 }
 
 pub fn plot(case: &Case, study: &Study) -> Plot {
-    let mut plot = Plot::new(case.short_title, "run time (s)", "relative error").log_log();
+    let mut plot = Plot::new(case.short_title, "CPU time (s)", "relative error").log_log();
     let mut solvers: Vec<&str> = Vec::new();
     for r in &study.rows {
         if !solvers.contains(&r.setting.solver) {

@@ -20,6 +20,7 @@ use crate::friction::lugre2d::{Contact, LuGre2d, SlipLaw};
 use crate::interface::transverse::vr;
 use crate::interface::values::ValueSet;
 use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
+use crate::solve::phase::cos_turns;
 use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
 use crate::solve::{within_step_budget, Integrator, Ode, Work, MAX_DIM};
@@ -59,9 +60,10 @@ pub struct Params {
 
 impl Params {
     /// The velocity of the contact point M carried by the support: eta * (0, yp').
+    #[inline]
     pub fn support_velocity(&self, t: f64) -> Vector2<f64> {
-        // The phase from t*f's fractional part keeps cos accurate however long the run.
-        Vector2::new(0.0, self.eta * self.va * (TAU * (t * self.f).fract()).cos())
+        // The phase in turns keeps cos accurate however long the run.
+        Vector2::new(0.0, self.eta * self.va * cos_turns(t * self.f))
     }
 
     /// Support displacement yp = u0 sin(wt), u0 = va/w.
@@ -69,6 +71,7 @@ impl Params {
         self.va / (TAU * self.f) * (TAU * (t * self.f).fract()).sin()
     }
 
+    #[inline]
     pub fn contact(&self, t: f64, y: &[f64]) -> Contact {
         let v_body = if self.held {
             Vector2::zeros()
@@ -115,6 +118,7 @@ impl Ode for Equations<'_> {
         DIM
     }
 
+    #[inline]
     fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let p = self.p;
         let c = p.contact(t, y);
@@ -124,10 +128,12 @@ impl Ode for Equations<'_> {
             dydt[LAMBDA] = vd;
         } else {
             let fd = p.drive_force(y, vd);
+            // One division for both accelerations.
+            let inv_m = 1.0 / p.m;
             dydt[X] = y[VX];
-            dydt[VX] = (fd - c.ffx()) / p.m;
+            dydt[VX] = (fd - c.ffx()) * inv_m;
             dydt[Y] = y[VY];
-            dydt[VY] = c.ffy() / p.m;
+            dydt[VY] = c.ffy() * inv_m;
             dydt[LAMBDA] = vd - y[VX];
         }
         dydt[ZX] = c.zdot.x;
@@ -138,6 +144,7 @@ impl Ode for Equations<'_> {
 }
 
 impl Switching for Equations<'_> {
+    #[inline]
     fn switches(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
         let c = self.p.contact(t, y);
         let vr = c.v1 + c.v2;

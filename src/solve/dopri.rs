@@ -106,6 +106,72 @@ struct Trial {
     err: f64,
 }
 
+impl Trial {
+    fn new() -> Self {
+        Trial {
+            k: [[0.0; MAX_DIM]; 7],
+            y_new: [0.0; MAX_DIM],
+            err: 0.0,
+        }
+    }
+}
+
+/// The controller's safety factor and the exponents of its proportional-integral rule
+/// (Gustafsson's alpha = 0.7/5, beta = 0.4/5). The integral part damps the accept/reject cycling
+/// that a pure err^(-1/5) rule falls into where the error constant changes quickly (the bristle
+/// turning as the support reverses): on scene T it removes nearly all rejected steps.
+const SAFETY: f64 = 0.9;
+const BETA: f64 = 0.08;
+const ALPHA: f64 = 0.2 - 0.75 * BETA;
+/// ln(1e-4): the smallest previous error the integral part remembers (Hairer's floor).
+const LN_ERR_FLOOR: f64 = -9.210_340_371_976_184;
+
+/// A last step of a call this much longer than the step the controller proposes is taken whole,
+/// instead of a full step followed by a sliver that costs as much.
+const STRETCH: f64 = 1.1;
+
+/// The dense output of an accepted trial as Hairer's five coefficient vectors (`contd5`), so each
+/// evaluation while a kink is being located costs a few products per state.
+struct Dense {
+    r: [[f64; MAX_DIM]; 5],
+}
+
+impl Dense {
+    fn new(n: usize, y: &[f64], tr: &Trial, h: f64) -> Self {
+        let mut r = [[0.0; MAX_DIM]; 5];
+        for j in 0..n {
+            let r2 = tr.y_new[j] - y[j];
+            let r3 = h * tr.k[0][j] - r2;
+            let r4 = r2 - h * tr.k[6][j] - r3;
+            let mut r5 = 0.0;
+            for (s, d) in D.iter().enumerate() {
+                r5 += d * tr.k[s][j];
+            }
+            r[0][j] = y[j];
+            r[1][j] = r2;
+            r[2][j] = r3;
+            r[3][j] = r4;
+            r[4][j] = h * r5;
+        }
+        Dense { r }
+    }
+
+    /// The state at `t + theta h`.
+    fn at(&self, n: usize, theta: f64, out: &mut [f64; MAX_DIM]) {
+        let u = 1.0 - theta;
+        let r = &self.r;
+        for j in 0..n {
+            out[j] = r[0][j] + theta * (r[1][j] + u * (r[2][j] + theta * (r[3][j] + u * r[4][j])));
+        }
+    }
+}
+
+/// Has the switching function gone from `old` to `new` across zero? An old value of exactly 0
+/// (the step started on the switch) does not count.
+fn crossed(old: f64, new: f64) -> bool {
+    old != 0.0 && (new == 0.0 || (new > 0.0) != (old > 0.0))
+}
+
 impl Dopri5 {
     pub fn new(rtol: f64, atol: [f64; MAX_DIM], h_max: f64) -> Self {
         Dopri5 {
@@ -117,33 +183,62 @@ impl Dopri5 {
         }
     }
 
-    fn trial(
+    /// Takes the step `h` from `(t, y)` with first stage `k1` into `tr`. Generic over the ODE
+    /// so that the right-hand side inlines and the state loops run over a constant length.
+    #[allow(clippy::too_many_arguments)]
+    fn trial<S: Switching + ?Sized>(
         &self,
-        ode: &dyn Switching,
+        ode: &S,
         t: f64,
         y: &[f64],
-        k1: &[f64],
+        k1: &[f64; MAX_DIM],
         h: f64,
+        tr: &mut Trial,
         work: &mut Work,
-    ) -> Trial {
-        let n = ode.dim();
-        let mut k = [[0.0; MAX_DIM]; 7];
-        k[0][..n].copy_from_slice(&k1[..n]);
+    ) {
+        let n = ode.dim().min(MAX_DIM);
+        tr.k[0] = *k1;
+        // Whole fixed-length rows (the states past n stay 0): loops of constant length.
+        let mut y0 = [0.0; MAX_DIM];
+        y0[..n].copy_from_slice(&y[..n]);
         let mut tmp = [0.0; MAX_DIM];
-        for s in 1..7 {
-            for j in 0..n {
-                let mut acc = 0.0;
-                for (r, a) in A[s][..s].iter().enumerate() {
-                    acc += a * k[r][j];
+        // The stages written out: with the rows of A as constants the zero terms drop out (the
+        // compiler may not drop 0 * k itself) and the sums run row by row.
+        macro_rules! stage {
+            ($s:literal) => {{
+                let mut acc = [0.0; MAX_DIM];
+                for r in 0..$s {
+                    let a = A[$s][r];
+                    if a != 0.0 {
+                        for j in 0..MAX_DIM {
+                            acc[j] += a * tr.k[r][j];
+                        }
+                    }
                 }
-                tmp[j] = y[j] + h * acc;
-            }
-            let (_, rest) = k.split_at_mut(s);
-            ode.rhs(t + C[s] * h, &tmp[..n], &mut rest[0][..n]);
+                for j in 0..MAX_DIM {
+                    tmp[j] = y0[j] + h * acc[j];
+                }
+                let (_, rest) = tr.k.split_at_mut($s);
+                ode.rhs(t + C[$s] * h, &tmp[..n], &mut rest[0][..n]);
+            }};
         }
+        stage!(1);
+        stage!(2);
+        stage!(3);
+        stage!(4);
+        stage!(5);
+        stage!(6);
         work.rhs_evaluations += 6;
         // Stage 7 is evaluated at y_new (FSAL), so y_new is the last stage's argument.
-        let y_new = tmp;
+        tr.y_new = tmp;
+        let mut e = [0.0; MAX_DIM];
+        for (w, k) in E.iter().zip(&tr.k) {
+            if *w != 0.0 {
+                for (e, k) in e.iter_mut().zip(k) {
+                    *e += w * k;
+                }
+            }
+        }
         let mut sum = 0.0;
         let mut controlled = 0;
         for j in 0..n {
@@ -153,65 +248,52 @@ impl Dopri5 {
                 continue;
             }
             controlled += 1;
-            let mut e = 0.0;
-            for (s, w) in E.iter().enumerate() {
-                e += w * k[s][j];
-            }
-            let scale = self.atol[j] + self.rtol * y[j].abs().max(y_new[j].abs());
-            sum += (h * e / scale).powi(2);
+            let scale = self.atol[j] + self.rtol * y0[j].abs().max(tmp[j].abs());
+            let q = h * e[j] / scale;
+            sum += q * q;
         }
-        let err = (sum / controlled.max(1) as f64).sqrt();
-        Trial {
-            k,
-            y_new,
-            err: if err.is_finite() { err } else { f64::INFINITY },
-        }
-    }
-
-    /// The dense-output state at `t + theta h` of an accepted trial from `y`.
-    fn dense(n: usize, y: &[f64], tr: &Trial, h: f64, theta: f64, out: &mut [f64; MAX_DIM]) {
-        for j in 0..n {
-            let r2 = tr.y_new[j] - y[j];
-            let r3 = h * tr.k[0][j] - r2;
-            let r4 = r2 - h * tr.k[6][j] - r3;
-            let mut r5 = 0.0;
-            for (s, d) in D.iter().enumerate() {
-                r5 += d * tr.k[s][j];
-            }
-            r5 *= h;
-            out[j] = y[j] + theta * (r2 + (1.0 - theta) * (r3 + theta * (r4 + (1.0 - theta) * r5)));
-        }
+        let err = (sum / f64::from(controlled.max(1))).sqrt();
+        tr.err = if err.is_finite() { err } else { f64::INFINITY };
     }
 
     /// The first sign change of switching function `i` inside the trial step, as a fraction of
-    /// the step (Illinois regula falsi on the dense output).
-    #[allow(clippy::too_many_arguments)]
-    fn locate(
-        ode: &dyn Switching,
+    /// the step (the shared root finder on the dense output). A billionth of the step is far
+    /// below what the dense output itself resolves across a kink.
+    fn locate<S: Switching + ?Sized>(
+        ode: &S,
         t: f64,
-        y: &[f64],
-        tr: &Trial,
+        dense: &Dense,
         h: f64,
         i: usize,
         s0: f64,
         s1: f64,
     ) -> f64 {
-        let n = ode.dim();
+        let n = ode.dim().min(MAX_DIM);
         let mut state = [0.0; MAX_DIM];
         let mut sw = [0.0; MAX_SWITCHES];
         let switch_at = |m: f64| {
-            Self::dense(n, y, tr, h, m, &mut state);
+            dense.at(n, m, &mut state);
             ode.switches(t + m * h, &state[..n], &mut sw);
             sw[i]
         };
-        super::root::first_zero(switch_at, s0, s1, 1e-15, 100)
+        super::root::first_zero(switch_at, s0, s1, 1e-9, 100)
+    }
+
+    /// The factor the next step is scaled by after an accepted step with error `err`, given the
+    /// logarithm of the previous accepted step's error (proportional-integral rule, written with
+    /// one log and one exp instead of two powers: it runs every step). Also returns the log to
+    /// keep for the next step.
+    fn growth(err: f64, ln_err_old: f64) -> (f64, f64) {
+        let ln_err = err.max(1e-10).ln();
+        let fac = (SAFETY * (BETA * ln_err_old - ALPHA * ln_err).exp()).clamp(0.2, 10.0);
+        (fac, ln_err.max(LN_ERR_FLOOR))
     }
 
     /// Integrates `ode` from `t0` to `t1`, ending steps on the sign changes of its switching
     /// functions.
-    pub fn integrate_switched(
+    pub fn integrate_switched<S: Switching + ?Sized>(
         &mut self,
-        ode: &dyn Switching,
+        ode: &S,
         t0: f64,
         t1: f64,
         y: &mut [f64],
@@ -246,6 +328,11 @@ impl Dopri5 {
         let mut sw_new = [0.0; MAX_SWITCHES];
         let mut count = ode.switches(t, &y[..n], &mut sw_old);
         let mut steps = 0u64;
+        let mut tr = Trial::new();
+        let mut retry = Trial::new();
+        // The integral memory of the controller starts afresh each call, so that a restored
+        // state (which keeps only the step) continues exactly as the original run.
+        let mut ln_err_old = 0.0;
         while t < t1 {
             steps += 1;
             if steps > self.max_steps {
@@ -255,39 +342,41 @@ impl Dopri5 {
                 ));
             }
             let mut h = self.h.min(self.h_max);
-            let last = t + h >= t1 - h_tiny;
+            let rest = t1 - t;
+            let last = t + h >= t1 - h_tiny || (rest <= STRETCH * h && rest <= self.h_max);
             if last {
-                h = t1 - t;
+                h = rest;
             }
-            let mut tr = self.trial(ode, t, y, &k1, h, work);
+            self.trial(ode, t, y, &k1, h, &mut tr, work);
             // Look for a sign change before the error test: a step across a kink fails that test
             // by a wide margin, and halving towards the kink blindly costs several rejections,
             // while the trial's dense output already says where the kink is.
             ode.switches(t + h, &tr.y_new[..n], &mut sw_new);
             let mut theta_min = 1.0;
+            let mut first = None;
+            let mut dense = None;
             for i in 0..count {
-                if sw_old[i] != 0.0 && (sw_new[i] == 0.0 || (sw_new[i] > 0.0) != (sw_old[i] > 0.0))
-                {
-                    let theta = Self::locate(ode, t, y, &tr, h, i, sw_old[i], sw_new[i]);
-                    if theta * h > h_tiny {
-                        theta_min = f64::min(theta_min, theta);
+                if crossed(sw_old[i], sw_new[i]) {
+                    let d = dense.get_or_insert_with(|| Dense::new(n, y, &tr, h));
+                    let theta = Self::locate(ode, t, d, h, i, sw_old[i], sw_new[i]);
+                    if theta * h > h_tiny && theta < theta_min {
+                        theta_min = theta;
+                        first = Some(i);
                     }
                 }
             }
             let mut h_taken = h;
-            let mut full = true;
             if theta_min < 1.0 {
                 // Retake the step to end on the first kink; a shorter step from the same point
                 // passes the error test in all but freak cases, which the controller then handles.
                 let h_kink = theta_min * h;
-                let retry = self.trial(ode, t, y, &k1, h_kink, work);
+                self.trial(ode, t, y, &k1, h_kink, &mut retry, work);
                 if retry.err <= 1.0 {
-                    tr = retry;
+                    std::mem::swap(&mut tr, &mut retry);
                     h_taken = h_kink;
-                    full = false;
                 } else {
                     work.rejected += 1;
-                    let fac = (0.9 * retry.err.powf(-0.2)).clamp(0.1, 0.9);
+                    let fac = (SAFETY * retry.err.powf(-0.2)).clamp(0.1, 0.9);
                     self.h = h_kink * fac;
                     if self.h < h_tiny {
                         return Err(format!(
@@ -299,7 +388,7 @@ impl Dopri5 {
                 }
             } else if tr.err > 1.0 {
                 work.rejected += 1;
-                let fac = (0.9 * tr.err.powf(-0.2)).clamp(0.1, 0.9);
+                let fac = (SAFETY * tr.err.powf(-0.2)).clamp(0.1, 0.9);
                 self.h = h * fac;
                 if self.h < h_tiny {
                     return Err(format!(
@@ -309,16 +398,24 @@ impl Dopri5 {
                 }
                 continue;
             }
+            let full = first.is_none();
             work.steps += 1;
             t = if last && full { t1 } else { t + h_taken };
             y[..n].copy_from_slice(&tr.y_new[..n]);
             if y[..n].iter().any(|v| !v.is_finite()) {
                 return Err(format!("dopri5: the state became non-finite at t = {t}"));
             }
-            k1[..n].copy_from_slice(&tr.k[6][..n]);
+            k1 = tr.k[6];
             count = ode.switches(t, &y[..n], &mut sw_old);
-            if full {
-                let fac = (0.9 * tr.err.max(1e-10).powf(-0.2)).clamp(0.2, 10.0);
+            if let Some(i) = first {
+                // The step ended on the kink of switch i, which the next step must not find
+                // again: where the end landed a hair short of it, take it as crossed.
+                if crossed(sw_old[i], sw_new[i]) {
+                    sw_old[i] = f64::MIN_POSITIVE.copysign(sw_new[i]);
+                }
+            } else {
+                let (fac, ln_err) = Self::growth(tr.err, ln_err_old);
+                ln_err_old = ln_err;
                 // The last step of a call may be cut short; do not let that shrink the next.
                 if !last {
                     self.h = h * fac;
