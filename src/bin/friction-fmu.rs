@@ -49,6 +49,8 @@ fn work_precision(out: &Path) -> Result<(), String> {
     for path in report::work_precision::write_all(&report::cases::all(), out)? {
         println!("wrote {}", path.display());
     }
+    let (path, table) = report::trimmed::write(out)?;
+    println!("\n{table}wrote {}", path.display());
     stability()
 }
 
