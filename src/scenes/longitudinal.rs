@@ -11,7 +11,7 @@
 mod ode;
 
 use super::period_mean::PeriodMean;
-use super::{require_passive, require_positive, Scene};
+use super::{require_passive, require_positive, Scene, Scope};
 use crate::friction::{coulomb, dahl::Dahl, lugre::LuGre};
 use crate::interface::longitudinal::vr;
 use crate::interface::values::ValueSet;
@@ -51,6 +51,9 @@ pub struct Longitudinal {
     /// The work of the friction force on the sliding since the start, the integral of FT vr.
     friction_work: f64,
     pub work: Work,
+    /// Coulomb's closed form runs on the 1/n grid, for the midpoint rule of its work W_diss (the
+    /// force integral needs only the sign changes of vr): false when W_diss is hidden.
+    pub coulomb_grid: bool,
 }
 
 /// vr(t) for a velocity source, frequency f and held input.
@@ -61,16 +64,21 @@ fn velocity_at(source: Velocity, f: f64, held: f64, t: f64) -> f64 {
     }
 }
 
-pub fn build(
-    values: &ValueSet,
-    start_time: f64,
-    _scope: &super::Scope,
-) -> Result<Box<dyn Scene>, String> {
-    Ok(Box::new(Longitudinal::new(values, start_time)?))
+pub fn build(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Box<dyn Scene>, String> {
+    Ok(Box::new(Longitudinal::with_scope(
+        values, start_time, scope,
+    )?))
 }
 
 impl Longitudinal {
+    /// The full model.
     pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, String> {
+        Longitudinal::with_scope(values, start_time, &Scope::full())
+    }
+
+    /// The scene for an interface that hides what `scope` lists. (Coulomb has no bristle state
+    /// in the full model already: z stays 0 and the force is integrated in closed form.)
+    pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
         let m = require_positive(values, vr::M)?;
         let mu = require_positive(values, vr::MU)?;
         let g = require_positive(values, vr::G)?;
@@ -126,6 +134,7 @@ impl Longitudinal {
             mean: PeriodMean::new(start_time, 1.0 / f),
             friction_work: 0.0,
             work: Work::default(),
+            coulomb_grid: scope.exposes(vr::W_DISS),
         })
     }
 
@@ -176,7 +185,7 @@ impl Longitudinal {
             // Coulomb is always integrated in closed form on the grid: its sign at each sub-step's
             // midpoint must be the sign over the sub-step, which a whole period would not give
             // where vr only touches zero (vc = va).
-            if self.solver.fixed_step() || self.law == Law::Coulomb {
+            if self.solver.fixed_step() || (self.law == Law::Coulomb && self.coulomb_grid) {
                 // The grid point after t; phase*n can round just below an integer we reached.
                 let mut j = (phase * n).floor() + 1.0;
                 if j / (n * self.f) <= t {
@@ -209,6 +218,16 @@ impl Longitudinal {
         }
     }
 
+    /// A velocity with the sign of vr over a sub-step whose midpoint velocity is `v_mid`: when
+    /// |vc| >= va vr keeps the sign of vc (it only touches 0, maybe at a whole period's
+    /// midpoint), otherwise the sub-steps end on its sign changes.
+    fn sliding_direction(&self, v_mid: f64) -> f64 {
+        match self.velocity {
+            Velocity::Prescribed { vc, va } if vc.abs() >= va => vc,
+            _ => v_mid,
+        }
+    }
+
     fn substep(&mut self, t0: f64, t1: f64) -> Result<(), String> {
         if !matches!(self.solver, Solver::Exponential) && self.law != Law::Coulomb {
             let (source, f, held) = (self.velocity, self.f, self.v_held);
@@ -225,6 +244,9 @@ impl Longitudinal {
         self.work.steps += 1;
         self.work.rhs_evaluations += 1;
         let integral = match self.law {
+            Law::Coulomb if !self.coulomb_grid => {
+                coulomb::force(self.fc, self.sliding_direction(v)) * h
+            }
             Law::Coulomb => coulomb::force(self.fc, v) * h,
             Law::Dahl(law) => {
                 let (z1, z_integral) = law.advance(self.z, v, h);
@@ -397,6 +419,74 @@ mod tests {
         let e2 = (mean_at(400.0) - reference).abs();
         let ratio = e1 / e2;
         assert!((3.5..4.5).contains(&ratio), "error ratio {ratio}");
+    }
+
+    /// Coulomb with W_diss hidden (law and bristle parameters fixed, only FT_mean and S read).
+    fn coulomb_scope() -> Scope {
+        Scope::hiding(vec![
+            vr::LAW,
+            vr::KT,
+            vr::ALPHA,
+            vr::FT,
+            vr::Z,
+            vr::VR,
+            vr::W_DISS,
+        ])
+    }
+
+    /// `(FT_mean, S)` after each of `periods` periods.
+    fn mean_trace(values: &ValueSet, scope: &Scope, periods: u32) -> Vec<(f64, f64)> {
+        let mut scene = Longitudinal::with_scope(values, 0.0, scope).unwrap();
+        let mut out = values.clone();
+        (0..periods)
+            .map(|_| {
+                scene.do_step(1.0 / scene.f, values).unwrap();
+                scene.write_outputs(&mut out);
+                (out.real(vr::FT_MEAN), out.real(vr::S))
+            })
+            .collect()
+    }
+
+    /// Oracle: the full scene, and the closed form. With W_diss hidden Coulomb's closed form
+    /// runs over the sign changes of vr instead of the 1/n grid: the same integral summed in
+    /// fewer pieces, equal to round-off (1e-13 FC; 1e-11 in S, a percentage).
+    #[test]
+    fn trimmed_coulomb_matches_the_full_scene() {
+        let fc = 0.1 * 0.02 * 9.81;
+        for vc in [0.230, 0.146, -0.095, 0.4, 0.264] {
+            let v = values("coulomb", vc);
+            let full = mean_trace(&v, &Scope::full(), 4);
+            let trimmed = mean_trace(&v, &coulomb_scope(), 4);
+            for ((a, sa), (b, sb)) in full.iter().zip(&trimmed) {
+                assert!((a - b).abs() < 1e-13 * fc, "vc {vc}: {a} vs {b}");
+                assert!((sa - sb).abs() < 1e-11, "vc {vc}: S {sa} vs {sb}");
+            }
+            let exact = coulomb::mean_under_vibration(fc, vc, 0.264);
+            assert!((trimmed[3].0 - exact).abs() < 1e-13 * fc, "vc {vc}");
+        }
+        // The trimmed scene takes a handful of sub-steps a period, not steps_per_period.
+        let mut scene =
+            Longitudinal::with_scope(&values("coulomb", 0.146), 0.0, &coulomb_scope()).unwrap();
+        scene
+            .do_step(1.0 / scene.f, &values("coulomb", 0.146))
+            .unwrap();
+        assert!(scene.work.steps <= 4, "{} sub-steps", scene.work.steps);
+    }
+
+    /// save/restore of the trimmed Coulomb scene continues it exactly.
+    #[test]
+    fn trimmed_coulomb_restore_continues_identically() {
+        let v = values("coulomb", 0.146);
+        let h = 0.37 / 60_000.0;
+        let mut a = Longitudinal::with_scope(&v, 0.0, &coulomb_scope()).unwrap();
+        a.do_step(h, &v).unwrap();
+        let saved = a.save();
+        a.do_step(h, &v).unwrap();
+        let mut b = Longitudinal::with_scope(&v, 0.0, &coulomb_scope()).unwrap();
+        b.restore(&saved).unwrap();
+        b.do_step(h, &v).unwrap();
+        assert_eq!(a.mean_force(), b.mean_force());
+        assert_eq!(a.time(), b.time());
     }
 
     fn with_solver(solver: &str, knob: f64) -> ValueSet {
