@@ -5,13 +5,14 @@
 //!                                    and write figures into DIR/figures (the default command)
 //!   friction-fmu report [--out DIR]  error against run time of every solver of every scene:
 //!                                    DIR/<scene>.md tables and DIR/<scene>.svg plots
-//!                                    (default DIR: report); then prints the stability matrix
+//!                                    (default DIR: report); trimmed scenes against the full
+//!                                    ones in DIR/trimmed.md; then prints the stability matrix
 
 use friction_fmu::{package, report, scenes};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: friction-fmu [build|run|report] [--out DIR]\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out)\n  run     build, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.svg (default DIR: report)";
+const USAGE: &str = "usage: friction-fmu [build|run|report] [--out DIR]\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out)\n  run     build, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.svg (default DIR: report), trimmed against full scenes: DIR/trimmed.md";
 
 fn build(out: &Path) -> Result<(), String> {
     let exe = std::env::current_exe().map_err(|e| format!("cannot locate this program: {e}"))?;

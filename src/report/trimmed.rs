@@ -17,6 +17,8 @@ use std::time::Instant;
 /// One comparison: a model at fixed values, run over `steps` communication steps of `step`.
 pub struct Case {
     pub title: &'static str,
+    /// What the trimmed scene leaves out of its run.
+    pub skips: &'static str,
     pub values: ValueSet,
     /// What the scene file fixes and leaves out, by value reference.
     pub hidden: Vec<u32>,
@@ -32,7 +34,10 @@ struct Trace {
 
 pub struct Row {
     pub title: &'static str,
+    pub skips: &'static str,
     pub kept: String,
+    /// Names of the hidden variables.
+    pub hidden: String,
     pub full_seconds: f64,
     pub trimmed_seconds: f64,
     /// Largest |full - trimmed| over every kept output and communication point, relative to
@@ -66,10 +71,33 @@ pub fn transverse_fig4a() -> Case {
     hidden.extend(hide_outputs_but(&it::TABLE, &[it::vr::FFX]));
     Case {
         title: "T, Fig. 4a: va = 0, from rest, 0.05 s, dopri5 1e-10",
+        skips: "the plane (5 states of 9), the period cuts",
         values,
         hidden,
         step: 1e-4,
         steps: 500,
+    }
+}
+
+/// The Fig. 4a case with FFx_mean read too: the 1D equations alone (the period cuts stay).
+pub fn transverse_fig4a_with_mean() -> Case {
+    let mut case = transverse_fig4a();
+    case.hidden.retain(|&vr| vr != it::vr::FFX_MEAN);
+    case.title = "T, Fig. 4a as above, FFx_mean read too";
+    case.skips = "the plane (6 states of 9)";
+    case
+}
+
+/// Scene T vibrating (va 2 mm/s, 3 kHz) from rest, steps of 0.1 ms, only FFx read: the period
+/// cuts alone (they fall between the communication points).
+pub fn transverse_vibrating() -> Case {
+    Case {
+        title: "T, va 2 mm/s, 3 kHz, from rest, 0.01 s in steps of 0.1 ms, dopri5 1e-10",
+        skips: "the period cuts",
+        values: ValueSet::start(&it::TABLE),
+        hidden: hide_outputs_but(&it::TABLE, &[it::vr::FFX]),
+        step: 1e-4,
+        steps: 100,
     }
 }
 
@@ -81,6 +109,7 @@ pub fn transverse_fig8() -> Case {
     values.set(it::vr::TOLERANCE, 1e-8);
     Case {
         title: "T, Fig. 8 point: vd 0.5, va 2 mm/s, 3 kHz, 150 periods, dopri5 1e-8",
+        skips: "nothing: the mean needs q and the period cuts, w feeds the passivity check",
         values,
         hidden: hide_outputs_but(&it::TABLE, &[it::vr::FFX_MEAN]),
         step: 1.0 / 3000.0,
@@ -107,6 +136,7 @@ pub fn longitudinal_coulomb() -> Case {
     let f = values.real(il::vr::F);
     Case {
         title: "L, Table 1 Coulomb row, vc = 0.146 m/s, 30 periods",
+        skips: "the 1/n grid: sub-steps end only where vr changes sign and on period ends",
         values,
         hidden,
         step: 1.0 / f,
@@ -127,6 +157,7 @@ pub fn oscillator_trace() -> Case {
     let period = std::f64::consts::TAU / values.real(io::vr::W);
     Case {
         title: "O, paper's case, trigonometric, radau5, 60 periods, u u' u'' read",
+        skips: "the turning-point search, the period cuts, the friction-work state",
         values,
         hidden,
         step: period / 50.0,
@@ -137,6 +168,8 @@ pub fn oscillator_trace() -> Case {
 pub fn cases() -> Vec<Case> {
     vec![
         transverse_fig4a(),
+        transverse_fig4a_with_mean(),
+        transverse_vibrating(),
         transverse_fig8(),
         longitudinal_coulomb(),
         oscillator_trace(),
@@ -243,9 +276,17 @@ pub fn compare(case: &Case) -> Result<Row, String> {
         .filter_map(|&vr| table.variable(vr).map(|v| v.name))
         .collect::<Vec<_>>()
         .join(", ");
+    let hidden = case
+        .hidden
+        .iter()
+        .filter_map(|&vr| table.variable(vr).map(|v| v.name))
+        .collect::<Vec<_>>()
+        .join(", ");
     Ok(Row {
         title: case.title,
+        skips: case.skips,
         kept,
+        hidden,
         full_seconds: median(full_times),
         trimmed_seconds: median(trimmed_times),
         max_difference,
@@ -256,15 +297,16 @@ pub fn markdown(rows: &[Row]) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "| case | outputs kept | full (s) | trimmed (s) | speed-up | max rel. difference |"
+        "| case | outputs kept | the trimmed scene skips | full (s) | trimmed (s) | speed-up | max rel. difference |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
     for r in rows {
         let _ = writeln!(
             s,
-            "| {} | {} | {:.3e} | {:.3e} | {:.2} | {:.1e} |",
+            "| {} | {} | {} | {:.3e} | {:.3e} | {:.2} | {:.1e} |",
             r.title,
             r.kept,
+            r.skips,
             r.full_seconds,
             r.trimmed_seconds,
             r.full_seconds / r.trimmed_seconds,
@@ -273,8 +315,11 @@ pub fn markdown(rows: &[Row]) -> String {
     }
     let _ = writeln!(
         s,
-        "\nTime: CPU time of the thread for one run, median of {REPEATS} samples (each repeating the run for at least {SAMPLE_SECONDS} s) single-threaded, full and trimmed alternating. Difference: the largest |full - trimmed| of a kept output over every communication point, relative to that output's largest |value|."
+        "\nTime: CPU time of the thread for one run, median of {REPEATS} samples (each repeating the run for at least {SAMPLE_SECONDS} s) single-threaded, full and trimmed alternating. Difference: the largest |full - trimmed| of a kept output over every communication point, relative to that output's largest |value|.\n\nHidden by each case's scene file (fixed parameters and outputs left out):\n"
     );
+    for r in rows {
+        let _ = writeln!(s, "- {}: {}", r.title, r.hidden);
+    }
     s
 }
 
