@@ -197,10 +197,8 @@ impl Trim {
     fn of(scope: &Scope, values: &ValueSet, solver: &str) -> Self {
         let still = |vref: u32| scope.fixes(vref) && values.real(vref) == 0.0;
         Trim {
-            // The fixed-step schemes keep their planar form (exponential's bristle update and
-            // the paper's two-phase step are written in the plane).
-            axial: (still(vr::VA) || still(vr::ETA))
-                && matches!(solver, "dopri5" | "radau5" | "rk4"),
+            // The paper's two-phase step is written in the plane; it stays as the paper has it.
+            axial: (still(vr::VA) || still(vr::ETA)) && solver != "two_phase",
             mean: scope.exposes(vr::FFX_MEAN),
         }
     }
@@ -434,7 +432,12 @@ impl Transverse {
                 tp.advance(&self.p, vd, t0, t1, &mut self.y, &mut self.work)?;
             }
             Solver::Exponential(ex) => {
-                ex.advance(&self.p, vd, t0, t1, &mut self.y, &mut self.work)?;
+                let stepper = exponential::Stepper {
+                    p: &self.p,
+                    eq,
+                    axial: self.trim.axial,
+                };
+                ex.advance(&stepper, t0, t1, &mut self.y, &mut self.work)?;
             }
         }
         if self.trim.mean {

@@ -238,17 +238,28 @@ fn trimmed_scene_without_vibration_integrates_the_axial_states_only() {
     assert_eq!(dim(&v, &scope_keeping(&[vr::FFX], &[vr::ETA])), 5);
     // A fixed va that is not 0 keeps the plane.
     assert_eq!(dim(&v, &scope_keeping(&[vr::FFX], &[vr::VA])), 9);
+    // So does the paper's two-phase scheme, written in the plane; exponential goes 1D.
+    for (solver, expected) in [("two_phase", 9), ("exponential", 5)] {
+        v.set(vr::SOLVER, f64::from(SOLVER.value_of(solver).unwrap()));
+        assert_eq!(dim(&v, &scope_keeping(&[vr::FFX], &[vr::ETA])), expected);
+    }
 }
 
 /// Oracle: the full scene. Without vibration the 1D equations are the planar ones with y = 0;
-/// rk4 on the same steps (communication step = period, so the same sub-steps) differs only by
-/// round-off (e_x = z_x / |z_x| is 1 to an ulp); dopri5 ends its steps on other kinks (the full
-/// scene also stops where z_x changes sign), so the two meet to the tolerance: rtol 1e-10 on a
-/// force of FC, bounded here by 1e-8 FC over 10 ms of stick and slip from rest.
+/// rk4 and exponential on the same steps (communication step = period, so the same sub-steps)
+/// differ only by round-off (e_x = z_x / |z_x| is 1 to an ulp; z_x keeps its sign here, so the
+/// exponential scheme's pieces end at the same kinks); dopri5 ends its steps on other kinks (the
+/// full scene also stops where v1 = e_x x' changes sign with z_x), so the two meet to the
+/// tolerance: rtol 1e-10 on a force of FC, bounded here by 1e-8 FC over 10 ms of stick and slip
+/// from rest.
 #[test]
 fn trimmed_scene_without_vibration_matches_the_full_one() {
     let fixed = [vr::VA];
-    for (solver, bound, h) in [("rk4", 1e-11, 1.0 / 3000.0), ("dopri5", 1e-8, 1e-4f64)] {
+    for (solver, bound, h) in [
+        ("rk4", 1e-11, 1.0 / 3000.0),
+        ("exponential", 1e-11, 1.0 / 3000.0),
+        ("dopri5", 1e-8, 1e-4f64),
+    ] {
         for slip in ["split", "total"] {
             let mut v = values(solver, slip);
             v.set(vr::VA, 0.0);
@@ -301,7 +312,7 @@ fn trimmed_scene_without_the_mean_matches_the_full_one() {
 #[test]
 fn trimmed_restore_continues_identically() {
     for (va, fixed) in [(0.0, vec![vr::VA]), (2e-3, vec![])] {
-        for solver in ["dopri5", "radau5", "rk4"] {
+        for solver in ["dopri5", "radau5", "rk4", "exponential"] {
             let mut v = values(solver, "split");
             v.set(vr::VA, va);
             let scope = scope_keeping(&[vr::FFX, vr::X], &fixed);
