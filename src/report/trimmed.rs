@@ -88,6 +88,15 @@ pub fn transverse_fig4a_with_mean() -> Case {
     case
 }
 
+/// The Fig. 4a case with the exponential scheme (2000 steps a period of f = 3 kHz).
+pub fn transverse_fig4a_exponential() -> Case {
+    let mut case = transverse_fig4a();
+    case.values
+        .set(it::vr::SOLVER, item(&it::SOLVER, "exponential"));
+    case.title = "T, Fig. 4a as above, exponential, 2000 steps/period";
+    case
+}
+
 /// Scene T vibrating (va 2 mm/s, 3 kHz) from rest, steps of 0.1 ms, only FFx read: the period
 /// cuts alone (they fall between the communication points).
 pub fn transverse_vibrating() -> Case {
@@ -169,6 +178,7 @@ pub fn cases() -> Vec<Case> {
     vec![
         transverse_fig4a(),
         transverse_fig4a_with_mean(),
+        transverse_fig4a_exponential(),
         transverse_vibrating(),
         transverse_fig8(),
         longitudinal_coulomb(),

@@ -8,7 +8,8 @@
 //! (its power is FF e.(v_body - v_M) = FF (v1 + v2)), which gives the dissipated energy. The
 //! planar part comes last so a scene without vibration ([`axial`]) integrates only the first
 //! five or six states, the others staying 0.
-//! Sub-steps end on communication points and vibration period boundaries; the continuous-time
+//! Sub-steps end on communication points and vibration period boundaries (those only when
+//! FFx_mean is read, [`Trim`]); the continuous-time
 //! solvers integrate the ODE of SPEC.md, `two_phase` runs the paper's own scheme on the same
 //! state, `exponential` ([`exponential`]) the exact bristle update around a midpoint step of the
 //! body, for stiff contacts.
