@@ -118,7 +118,7 @@ pub fn transverse_fig8() -> Case {
     values.set(it::vr::TOLERANCE, 1e-8);
     Case {
         title: "T, Fig. 8 point: vd 0.5, va 2 mm/s, 3 kHz, 150 periods, dopri5 1e-8",
-        skips: "nothing: the mean needs q and the period cuts, w feeds the passivity check",
+        skips: "nothing: the mean needs q and the period cuts",
         values,
         hidden: hide_outputs_but(&it::TABLE, &[it::vr::FFX_MEAN]),
         step: 1.0 / 3000.0,
@@ -153,6 +153,35 @@ pub fn longitudinal_coulomb() -> Case {
     }
 }
 
+/// Scene L, Table 1's Dahl row at vc = 0.146 m/s with radau5: 30 periods in steps of 0.37
+/// period, the force and the deflection read (no mean, no energy).
+pub fn longitudinal_dahl_trace() -> Case {
+    let mut values = ValueSet::start(&il::TABLE);
+    values.set(il::vr::LAW, item(&il::LAW, "dahl"));
+    values.set(il::vr::VC, 0.146);
+    values.set(il::vr::SOLVER, item(&il::SOLVER, "radau5"));
+    let mut hidden = vec![
+        il::vr::LAW,
+        il::vr::FS,
+        il::vr::VS,
+        il::vr::SIGMA1,
+        il::vr::SIGMA2,
+    ];
+    hidden.extend(hide_outputs_but(
+        &il::TABLE,
+        &[il::vr::FT, il::vr::Z, il::vr::VR],
+    ));
+    let f = values.real(il::vr::F);
+    Case {
+        title: "L, Table 1 Dahl row, vc = 0.146 m/s, radau5 1e-8, 81 steps of 0.37 period",
+        skips: "the force integral and work states (1 state of 3), the period cuts",
+        values,
+        hidden,
+        step: 0.37 / f,
+        steps: 81,
+    }
+}
+
 /// Scene O at the paper's case (trigonometric law, radau5): 60 forcing periods in steps of 1/50
 /// period, the motion u, u', u'' read (no amplitude, no dissipated energy).
 pub fn oscillator_trace() -> Case {
@@ -182,6 +211,7 @@ pub fn cases() -> Vec<Case> {
         transverse_vibrating(),
         transverse_fig8(),
         longitudinal_coulomb(),
+        longitudinal_dahl_trace(),
         oscillator_trace(),
     ]
 }
