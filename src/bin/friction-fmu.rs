@@ -8,13 +8,14 @@
 //!                                    and write figures into DIR/figures (the default command)
 //!   friction-fmu report [--out DIR]  error against run time of every solver of every scene:
 //!                                    DIR/<scene>.md tables and DIR/<scene>.svg plots
-//!                                    (default DIR: report); then prints the stability matrix
+//!                                    (default DIR: report); trimmed scenes against the full
+//!                                    ones in DIR/trimmed.md; then prints the stability matrix
 
 use friction_fmu::{package, report, scene_file, scenes};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: friction-fmu [build [SCENE.toml...]|run|report] [--out DIR]\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out)\n          or, given scene files, each into DIR/<name>.fmu with only the variables it keeps\n  run     build, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.svg (default DIR: report)";
+const USAGE: &str = "usage: friction-fmu [build [SCENE.toml...]|run|report] [--out DIR]\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out)\n          or, given scene files, each into DIR/<name>.fmu with only the variables it keeps\n  run     build, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.svg (default DIR: report), trimmed against full scenes: DIR/trimmed.md";
 
 /// The FMU library built beside this program.
 fn library() -> Result<PathBuf, String> {
@@ -83,6 +84,8 @@ fn work_precision(out: &Path) -> Result<(), String> {
     for path in report::work_precision::write_all(&report::cases::all(), out)? {
         println!("wrote {}", path.display());
     }
+    let (path, table) = report::trimmed::write(out)?;
+    println!("\n{table}wrote {}", path.display());
     stability()
 }
 

@@ -12,4 +12,5 @@ pub mod progress;
 pub mod stability;
 pub mod svg;
 pub mod transverse;
+pub mod trimmed;
 pub mod work_precision;

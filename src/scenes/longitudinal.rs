@@ -6,12 +6,14 @@
 //! (|vr| has a kink there, and Coulomb friction jumps) and at period boundaries. The default
 //! `exponential` solver also cuts them at 1/n of a period and freezes the velocity at each
 //! sub-step's midpoint: a second-order scheme whose bristle update is exact and stable at any
-//! stiffness. The general solvers ([`ode`]) integrate z with the force integral as a second state.
+//! stiffness. The general solvers ([`ode`]) integrate z with the force integral and the work as
+//! further states, which a trimmed scene drops when their outputs are hidden
+//! ([`Longitudinal::ode_dim`]).
 
 mod ode;
 
 use super::period_mean::PeriodMean;
-use super::{require_passive, require_positive, Scene};
+use super::{require_passive, require_positive, Scene, Scope};
 use crate::friction::{coulomb, dahl::Dahl, lugre::LuGre};
 use crate::interface::longitudinal::vr;
 use crate::interface::values::ValueSet;
@@ -51,6 +53,15 @@ pub struct Longitudinal {
     /// The work of the friction force on the sliding since the start, the integral of FT vr.
     friction_work: f64,
     pub work: Work,
+    /// Coulomb's closed form runs on the 1/n grid, for the midpoint rule of its work W_diss (the
+    /// force integral needs only the sign changes of vr): false when W_diss is hidden.
+    pub coulomb_grid: bool,
+    /// States the general solvers integrate: z, then the force integral q while FT_mean or S is
+    /// read, then the work w while W_diss is read or the solver takes fixed steps (w feeds the
+    /// passivity check that stops an unstable fixed step; an adaptive one rejects such steps).
+    pub ode_dim: usize,
+    /// FT_mean or S is read: sub-steps end on period boundaries.
+    pub tracks_mean: bool,
 }
 
 /// vr(t) for a velocity source, frequency f and held input.
@@ -61,16 +72,21 @@ fn velocity_at(source: Velocity, f: f64, held: f64, t: f64) -> f64 {
     }
 }
 
-pub fn build(
-    values: &ValueSet,
-    start_time: f64,
-    _scope: &super::Scope,
-) -> Result<Box<dyn Scene>, String> {
-    Ok(Box::new(Longitudinal::new(values, start_time)?))
+pub fn build(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Box<dyn Scene>, String> {
+    Ok(Box::new(Longitudinal::with_scope(
+        values, start_time, scope,
+    )?))
 }
 
 impl Longitudinal {
+    /// The full model.
     pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, String> {
+        Longitudinal::with_scope(values, start_time, &Scope::full())
+    }
+
+    /// The scene for an interface that hides what `scope` lists. (Coulomb has no bristle state
+    /// in the full model already: z stays 0 and the force is integrated in closed form.)
+    pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
         let m = require_positive(values, vr::M)?;
         let mu = require_positive(values, vr::MU)?;
         let g = require_positive(values, vr::G)?;
@@ -113,6 +129,8 @@ impl Longitudinal {
         }
         let steps_per_period = steps_per_period as u32;
         let solver = Solver::new(values, law, fc, f, steps_per_period)?;
+        let fixed_step = solver.fixed_step();
+        let tracks_mean = scope.exposes(vr::FT_MEAN) || scope.exposes(vr::S);
         Ok(Longitudinal {
             law,
             velocity,
@@ -126,6 +144,15 @@ impl Longitudinal {
             mean: PeriodMean::new(start_time, 1.0 / f),
             friction_work: 0.0,
             work: Work::default(),
+            coulomb_grid: scope.exposes(vr::W_DISS),
+            ode_dim: if scope.exposes(vr::W_DISS) || fixed_step {
+                3
+            } else if tracks_mean {
+                2
+            } else {
+                1
+            },
+            tracks_mean,
         })
     }
 
@@ -169,14 +196,18 @@ impl Longitudinal {
     /// solvers only), sign change of vr, or period boundary, whichever comes first, but not past
     /// `t_end`.
     fn substep_end(&self, t: f64, t_end: f64) -> f64 {
-        let mut next = t_end.min(self.mean.next_boundary());
+        let mut next = if self.tracks_mean {
+            t_end.min(self.mean.next_boundary())
+        } else {
+            t_end
+        };
         if let Velocity::Prescribed { vc, va } = self.velocity {
             let n = f64::from(self.steps_per_period);
             let phase = t * self.f;
             // Coulomb is always integrated in closed form on the grid: its sign at each sub-step's
             // midpoint must be the sign over the sub-step, which a whole period would not give
             // where vr only touches zero (vc = va).
-            if self.solver.fixed_step() || self.law == Law::Coulomb {
+            if self.solver.fixed_step() || (self.law == Law::Coulomb && self.coulomb_grid) {
                 // The grid point after t; phase*n can round just below an integer we reached.
                 let mut j = (phase * n).floor() + 1.0;
                 if j / (n * self.f) <= t {
@@ -209,13 +240,28 @@ impl Longitudinal {
         }
     }
 
+    /// A velocity with the sign of vr over a sub-step whose midpoint velocity is `v_mid`: when
+    /// |vc| >= va vr keeps the sign of vc (it only touches 0, maybe at a whole period's
+    /// midpoint), otherwise the sub-steps end on its sign changes.
+    fn sliding_direction(&self, v_mid: f64) -> f64 {
+        match self.velocity {
+            Velocity::Prescribed { vc, va } if vc.abs() >= va => vc,
+            _ => v_mid,
+        }
+    }
+
     fn substep(&mut self, t0: f64, t1: f64) -> Result<(), String> {
         if !matches!(self.solver, Solver::Exponential) && self.law != Law::Coulomb {
             let (source, f, held) = (self.velocity, self.f, self.v_held);
             let velocity = move |t: f64| velocity_at(source, f, held, t);
-            let (integral, power_integral) =
-                self.solver
-                    .advance(&self.law, &velocity, t0, t1, &mut self.z, &mut self.work)?;
+            let (integral, power_integral) = self.solver.advance(
+                (&self.law, self.ode_dim),
+                &velocity,
+                t0,
+                t1,
+                &mut self.z,
+                &mut self.work,
+            )?;
             self.friction_work += power_integral;
             self.mean.add(integral, t1);
             return Ok(());
@@ -225,6 +271,9 @@ impl Longitudinal {
         self.work.steps += 1;
         self.work.rhs_evaluations += 1;
         let integral = match self.law {
+            Law::Coulomb if !self.coulomb_grid => {
+                coulomb::force(self.fc, self.sliding_direction(v)) * h
+            }
             Law::Coulomb => coulomb::force(self.fc, v) * h,
             Law::Dahl(law) => {
                 let (z1, z_integral) = law.advance(self.z, v, h);
@@ -266,10 +315,15 @@ impl Scene for Longitudinal {
                 self.z
             ));
         }
+        let integrates_work = self.ode_dim == 3
+            || self.law == Law::Coulomb
+            || matches!(self.solver, Solver::Exponential);
         match self.law {
             // LuGre's bristle damping sigma1 can return energy (the law is passive only for
             // small sigma1), so only the other laws are held to it.
             Law::LuGre(law) if law.sigma1 > 0.0 => Ok(()),
+            // Without the work (W_diss hidden, adaptive solver) there is nothing to check.
+            _ if !integrates_work => Ok(()),
             _ => require_passive(
                 self.dissipated_energy(),
                 self.stored_energy(),
@@ -397,6 +451,148 @@ mod tests {
         let e2 = (mean_at(400.0) - reference).abs();
         let ratio = e1 / e2;
         assert!((3.5..4.5).contains(&ratio), "error ratio {ratio}");
+    }
+
+    /// Coulomb with W_diss hidden (law and bristle parameters fixed, only FT_mean and S read).
+    fn coulomb_scope() -> Scope {
+        Scope::hiding(vec![
+            vr::LAW,
+            vr::KT,
+            vr::ALPHA,
+            vr::FT,
+            vr::Z,
+            vr::VR,
+            vr::W_DISS,
+        ])
+    }
+
+    /// `(FT_mean, S)` after each of `periods` periods.
+    fn mean_trace(values: &ValueSet, scope: &Scope, periods: u32) -> Vec<(f64, f64)> {
+        let mut scene = Longitudinal::with_scope(values, 0.0, scope).unwrap();
+        let mut out = values.clone();
+        (0..periods)
+            .map(|_| {
+                scene.do_step(1.0 / scene.f, values).unwrap();
+                scene.write_outputs(&mut out);
+                (out.real(vr::FT_MEAN), out.real(vr::S))
+            })
+            .collect()
+    }
+
+    /// Oracle: the full scene, and the closed form. With W_diss hidden Coulomb's closed form
+    /// runs over the sign changes of vr instead of the 1/n grid: the same integral summed in
+    /// fewer pieces, equal to round-off (1e-13 FC; 1e-11 in S, a percentage).
+    #[test]
+    fn trimmed_coulomb_matches_the_full_scene() {
+        let fc = 0.1 * 0.02 * 9.81;
+        for vc in [0.230, 0.146, -0.095, 0.4, 0.264] {
+            let v = values("coulomb", vc);
+            let full = mean_trace(&v, &Scope::full(), 4);
+            let trimmed = mean_trace(&v, &coulomb_scope(), 4);
+            for ((a, sa), (b, sb)) in full.iter().zip(&trimmed) {
+                assert!((a - b).abs() < 1e-13 * fc, "vc {vc}: {a} vs {b}");
+                assert!((sa - sb).abs() < 1e-11, "vc {vc}: S {sa} vs {sb}");
+            }
+            let exact = coulomb::mean_under_vibration(fc, vc, 0.264);
+            assert!((trimmed[3].0 - exact).abs() < 1e-13 * fc, "vc {vc}");
+        }
+        // The trimmed scene takes a handful of sub-steps a period, not steps_per_period.
+        let mut scene =
+            Longitudinal::with_scope(&values("coulomb", 0.146), 0.0, &coulomb_scope()).unwrap();
+        scene
+            .do_step(1.0 / scene.f, &values("coulomb", 0.146))
+            .unwrap();
+        assert!(scene.work.steps <= 4, "{} sub-steps", scene.work.steps);
+    }
+
+    /// save/restore of the trimmed Coulomb scene continues it exactly.
+    #[test]
+    fn trimmed_coulomb_restore_continues_identically() {
+        let v = values("coulomb", 0.146);
+        let h = 0.37 / 60_000.0;
+        let mut a = Longitudinal::with_scope(&v, 0.0, &coulomb_scope()).unwrap();
+        a.do_step(h, &v).unwrap();
+        let saved = a.save();
+        a.do_step(h, &v).unwrap();
+        let mut b = Longitudinal::with_scope(&v, 0.0, &coulomb_scope()).unwrap();
+        b.restore(&saved).unwrap();
+        b.do_step(h, &v).unwrap();
+        assert_eq!(a.mean_force(), b.mean_force());
+        assert_eq!(a.time(), b.time());
+    }
+
+    /// `(FT, FT_mean)` after each of 30 communication steps of 0.37 period under `scope`.
+    fn force_trace(values: &ValueSet, scope: &Scope) -> (Vec<(f64, f64)>, Longitudinal) {
+        let mut scene = Longitudinal::with_scope(values, 0.0, scope).unwrap();
+        let mut out = values.clone();
+        let trace = (0..30)
+            .map(|_| {
+                scene.do_step(0.37 / scene.f, values).unwrap();
+                scene.write_outputs(&mut out);
+                (out.real(vr::FT), out.real(vr::FT_MEAN))
+            })
+            .collect();
+        (trace, scene)
+    }
+
+    /// Oracle: the full scene, and for FT the full scene at rtol 1e-12. The general solvers
+    /// leave out the work w when W_diss is hidden (it has no say in their error control: the
+    /// same steps, FT_mean equal to round-off), and the force integral q and the period cuts
+    /// when FT_mean and S are hidden too: then the steps differ, and FT must be as close to the
+    /// tight run as the full scene's (within twice its error, itself below 1e-6 FC at rtol
+    /// 1e-8). rk4 keeps w for the passivity check (and its grid holds the period ends).
+    #[test]
+    fn trimmed_general_solvers_match_the_full_scene() {
+        let fc = 0.1 * 0.02 * 9.81;
+        let mean_read = Scope::hiding(vec![vr::FT, vr::Z, vr::VR, vr::W_DISS]);
+        let trace_read = Scope::hiding(vec![vr::FT_MEAN, vr::S, vr::W_DISS]);
+        for law in ["dahl", "lugre"] {
+            for solver in ["dopri5", "radau5", "rk4"] {
+                let mut v = values(law, 0.146);
+                v.set(vr::SOLVER, f64::from(SOLVER.value_of(solver).unwrap()));
+                let (full, _) = force_trace(&v, &Scope::full());
+                let (mean, a) = force_trace(&v, &mean_read);
+                let (trace, b) = force_trace(&v, &trace_read);
+                let fixed = solver == "rk4";
+                assert_eq!((a.ode_dim, b.ode_dim), if fixed { (3, 3) } else { (2, 1) });
+                for ((_, m), (_, m2)) in full.iter().zip(&mean) {
+                    assert!((m - m2).abs() <= 1e-13 * fc, "{law} {solver}: {m} vs {m2}");
+                }
+                let mut tight = v.clone();
+                tight.set(vr::TOLERANCE, 1e-12);
+                let (reference, _) = force_trace(&tight, &Scope::full());
+                let error = |t: &[(f64, f64)]| {
+                    t.iter()
+                        .zip(&reference)
+                        .map(|((f, _), (r, _))| (f - r).abs())
+                        .fold(0.0, f64::max)
+                };
+                let (e_full, e_trimmed) = (error(&full), error(&trace));
+                assert!(e_full < 1e-6 * fc, "{law} {solver}: full {e_full:e} N");
+                assert!(
+                    e_trimmed <= 2.0 * e_full + 1e-12 * fc,
+                    "{law} {solver}: trimmed {e_trimmed:e} N, full {e_full:e} N"
+                );
+            }
+        }
+    }
+
+    /// save/restore of a scene without q and w continues it exactly.
+    #[test]
+    fn trimmed_general_solver_restore_continues_identically() {
+        let mut v = values("dahl", 0.146);
+        v.set(vr::SOLVER, f64::from(SOLVER.value_of("radau5").unwrap()));
+        let scope = Scope::hiding(vec![vr::FT_MEAN, vr::S, vr::W_DISS]);
+        let h = 0.37 / 60_000.0;
+        let mut a = Longitudinal::with_scope(&v, 0.0, &scope).unwrap();
+        a.do_step(h, &v).unwrap();
+        let saved = a.save();
+        a.do_step(h, &v).unwrap();
+        let mut b = Longitudinal::with_scope(&v, 0.0, &scope).unwrap();
+        b.restore(&saved).unwrap();
+        b.do_step(h, &v).unwrap();
+        assert_eq!(a.friction_force(), b.friction_force());
+        assert_eq!(a.z(), b.z());
     }
 
     fn with_solver(solver: &str, knob: f64) -> ValueSet {

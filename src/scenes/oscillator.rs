@@ -15,7 +15,7 @@
 pub mod exact;
 mod solver;
 
-use super::{require_finite, require_non_negative, require_positive, Scene};
+use super::{require_finite, require_non_negative, require_positive, Scene, Scope};
 use crate::friction::regularized::{stiction_excess, Regularized};
 use crate::interface::oscillator::vr;
 use crate::interface::values::ValueSet;
@@ -25,7 +25,8 @@ use solver::Solver;
 use std::f64::consts::TAU;
 
 /// The regularised equations of motion, `y = (u, u', W)` with W the friction work, the integral
-/// of H u' (a quadrature state, integrated to the solver's order).
+/// of H u' (a quadrature state, integrated to the solver's order; left out when W_diss is
+/// hidden).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Equations {
     pub m: f64,
@@ -38,6 +39,8 @@ pub struct Equations {
     /// The input force held over the current step.
     pub held: f64,
     pub law: Regularized,
+    /// W is integrated (W_diss is read).
+    pub with_work: bool,
 }
 
 impl Equations {
@@ -79,13 +82,19 @@ impl Equations {
 
 impl Ode for Equations {
     fn dim(&self) -> usize {
-        3
+        if self.with_work {
+            3
+        } else {
+            2
+        }
     }
     fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let (h, _, a) = self.evaluate(t, y[0], y[1]);
         dydt[0] = y[1];
         dydt[1] = a;
-        dydt[2] = h * y[1];
+        if self.with_work {
+            dydt[2] = h * y[1];
+        }
     }
 }
 
@@ -139,19 +148,24 @@ pub struct Oscillator {
     /// Longest sub-step of the regularised core.
     max_substep: f64,
     amplitude: PeriodMax,
+    /// u_amplitude is read: extremes of u located inside sub-steps, sub-steps cut at the
+    /// forcing period's boundaries.
+    pub tracks_amplitude: bool,
     pub work: Work,
 }
 
-pub fn build(
-    values: &ValueSet,
-    start_time: f64,
-    _scope: &super::Scope,
-) -> Result<Box<dyn Scene>, String> {
-    Ok(Box::new(Oscillator::new(values, start_time)?))
+pub fn build(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Box<dyn Scene>, String> {
+    Ok(Box::new(Oscillator::with_scope(values, start_time, scope)?))
 }
 
 impl Oscillator {
+    /// The full model.
     pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, String> {
+        Oscillator::with_scope(values, start_time, &Scope::full())
+    }
+
+    /// The scene for an interface that hides what `scope` lists.
+    pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
         let m = require_positive(values, vr::M)?;
         let c = require_non_negative(values, vr::C)?;
         let k = require_non_negative(values, vr::K)?;
@@ -208,6 +222,7 @@ impl Oscillator {
                     input,
                     held,
                     law,
+                    with_work: scope.exposes(vr::W_DISS),
                 };
                 let name = values.item(vr::SOLVER);
                 Core::Regularized(equations, Solver::new(name, rtol, atol, period / steps))
@@ -235,6 +250,7 @@ impl Oscillator {
                 running: u0.abs(),
                 last: u0.abs(),
             },
+            tracks_amplitude: scope.exposes(vr::U_AMPLITUDE),
             work: Work::default(),
         })
     }
@@ -268,6 +284,7 @@ impl Oscillator {
             Core::Exact(switch) => switch.advance(&mut self.state, t_end, held, log),
             Core::Regularized(equations, solver) => {
                 equations.held = held;
+                let tracks = self.tracks_amplitude;
                 let mut largest = self.state.u.abs();
                 let at_start = self.work;
                 while self.state.t < t_end {
@@ -282,10 +299,10 @@ impl Oscillator {
                         equations.require_rk4_stable(t1 - t0)?;
                     }
                     let start = [self.state.u, self.state.v, self.state.dissipated];
-                    let probe = solver.clone();
+                    let probe = tracks.then(|| solver.clone());
                     let mut y = start;
                     solver.integrate(&*equations, t0, t1, &mut y, &mut self.work)?;
-                    if start[1] * y[1] < 0.0 {
+                    if let Some(probe) = probe.filter(|_| start[1] * y[1] < 0.0) {
                         let extreme =
                             turning_point(equations, probe, (t0, start), (t1, y), &mut self.work)?;
                         largest = largest.max(extreme.abs());
@@ -316,7 +333,11 @@ impl Oscillator {
         let at_start = self.work;
         while self.state.t < t_end {
             within_step_budget(&self.work, &at_start, self.state.t)?;
-            let boundary = self.amplitude.next_boundary();
+            let boundary = if self.tracks_amplitude {
+                self.amplitude.next_boundary()
+            } else {
+                f64::INFINITY
+            };
             // A boundary within round-off of t_end closes its period at t_end (PeriodMax::add).
             let segment_end = if boundary < t_end - 1e-9 * self.amplitude.period {
                 boundary

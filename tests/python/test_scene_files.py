@@ -121,7 +121,8 @@ def test_model_description_keeps_exactly_what_the_file_lists(packed, stem):
 @pytest.mark.parametrize("stem", [f.stem for f in SCENES])
 def test_trimmed_fmu_computes_what_the_full_fmu_computes(packed, stem):
     """Oracle: the full FMU with every value the scene file sets. A tunable parameter is moved
-    off its start value in both, so the check also covers the kept interface."""
+    off its start value in both (down, so Table 1's vc stays below va: above it S is 0 and only
+    round-off is left to compare), so the check also covers the kept interface."""
     scene, path = packed[stem]
     experiment = scene["experiment"]
     step = experiment["step"]
@@ -130,7 +131,7 @@ def test_trimmed_fmu_computes_what_the_full_fmu_computes(packed, stem):
     for name in scene.get("tunable", [])[:1]:
         value = start_of(scene, name)
         if isinstance(value, float) and value != 0.0:
-            changed[name] = 1.5 * value
+            changed[name] = 0.8 * value
     trimmed = fmpy.simulate_fmu(str(path), start_values=changed, stop_time=stop,
                                 output_interval=step, output=scene["outputs"])
     full = fmpy.simulate_fmu(fmu_path(scene["model"]),

@@ -22,15 +22,16 @@ pub enum Solver {
     Radau5(Radau5),
 }
 
-/// `(z, q, w)` with the velocity as a function of time.
+/// `(z, q, w)` with the velocity as a function of time; the first `dim` of them.
 struct Bristle<'a> {
     law: &'a Law,
     velocity: &'a dyn Fn(f64) -> f64,
+    dim: usize,
 }
 
 impl Ode for Bristle<'_> {
     fn dim(&self) -> usize {
-        3
+        self.dim
     }
     fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let v = (self.velocity)(t);
@@ -41,8 +42,12 @@ impl Ode for Bristle<'_> {
             Law::LuGre(l) => (l.rate(y[0], v), l.force(y[0], v)),
         };
         dydt[0] = rate;
-        dydt[1] = force;
-        dydt[2] = force * v;
+        if self.dim > 1 {
+            dydt[1] = force;
+        }
+        if self.dim > 2 {
+            dydt[2] = force * v;
+        }
     }
 }
 
@@ -114,17 +119,17 @@ impl Solver {
     }
 
     /// Advances `z` over `[t0, t1]` (no sign change of vr inside); returns the integrals of the
-    /// force and of its power FT vr.
+    /// force and of its power FT vr (0 for those beyond the first `dim` states).
     pub fn advance(
         &mut self,
-        law: &Law,
+        (law, dim): (&Law, usize),
         velocity: &dyn Fn(f64) -> f64,
         t0: f64,
         t1: f64,
         z: &mut f64,
         work: &mut Work,
     ) -> Result<(f64, f64), String> {
-        let ode = Bristle { law, velocity };
+        let ode = Bristle { law, velocity, dim };
         let mut y = [*z, 0.0, 0.0];
         match self {
             Solver::Exponential => return Err("exponential is not an ODE solver".into()),

@@ -348,3 +348,63 @@ fn rk4_converges_on_the_paper_case() {
     let ratio = error(200.0) / error(400.0);
     assert!(ratio > 7.0, "error ratio {ratio}");
 }
+
+/// u_amplitude and W_diss hidden: only the motion read.
+fn motion_scope() -> Scope {
+    Scope::hiding(vec![vr::U_AMPLITUDE, vr::W_DISS, vr::H_OUT, vr::C_OUT])
+}
+
+/// (u, u', u'') after each of `steps` communication steps of 1/50 forcing period.
+fn motion(v: &ValueSet, scope: &Scope, steps: u32) -> Vec<[f64; 3]> {
+    let mut scene = Oscillator::with_scope(v, 0.0, scope).unwrap();
+    let h = std::f64::consts::TAU / v.real(vr::W) / 50.0;
+    let mut out = v.clone();
+    (0..steps)
+        .map(|_| {
+            scene.do_step(h, v).unwrap();
+            scene.write_outputs(&mut out);
+            [out.real(vr::U), out.real(vr::V), out.real(vr::A)]
+        })
+        .collect()
+}
+
+/// Oracle: the full scene. Without the amplitude the turning points are not searched (that
+/// search integrates probes from copies of the solver, never the run itself) and without W_diss
+/// the friction work is not integrated (it has no say in the error control): the motion is the
+/// same arithmetic, equal to round-off (1e-12 of its scale) for every solver. The exact core,
+/// in closed form, only no longer restarts its phase at each period's end: round-off too.
+#[test]
+fn trimmed_scene_without_amplitude_and_work_matches_the_full_one() {
+    for (law, solver) in [
+        ("trigonometric", "radau5"),
+        ("trigonometric", "dopri5"),
+        ("trigonometric", "rk4"),
+        ("exact", "radau5"),
+    ] {
+        let v = with_solver(law, solver);
+        let full = motion(&v, &Scope::full(), 500);
+        let trimmed = motion(&v, &motion_scope(), 500);
+        let scale = full.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+        for (a, b) in full.iter().zip(&trimmed) {
+            for (x, y) in a.iter().zip(b) {
+                assert!((x - y).abs() <= 1e-12 * scale, "{law} {solver}: {x} vs {y}");
+            }
+        }
+    }
+    let trimmed = Oscillator::with_scope(&values("linear"), 0.0, &motion_scope()).unwrap();
+    assert!(!trimmed.tracks_amplitude);
+}
+
+/// save/restore of the trimmed scene replays its motion.
+#[test]
+fn trimmed_save_and_restore_replay_the_motion() {
+    let v = values("trigonometric");
+    let mut scene = Oscillator::with_scope(&v, 0.0, &motion_scope()).unwrap();
+    scene.do_step(3.0, &v).unwrap();
+    let saved = scene.save();
+    scene.do_step(2.0, &v).unwrap();
+    let after = scene.save();
+    scene.restore(&saved).unwrap();
+    scene.do_step(2.0, &v).unwrap();
+    assert_eq!(scene.save(), after);
+}

@@ -14,6 +14,9 @@
 //! A step across a kink of the slip rate (v1 or v2 changing sign under the split law, v1 + v2
 //! under the total) is retaken in pieces that end on it ([`step_over_kinks`]).
 //!
+//! Without vibration (a trimmed scene, [`super::axial`]) the same steps run on the 1D state,
+//! where the slip rate depends on x' alone and the bristle update needs no predictor.
+//!
 //! Not the Strang splitting (bristle h/2, mechanics h with the bristle held, bristle h/2): when
 //! a h >> 1 the bristle is slaved to the velocities and a held bristle feeds the mechanics the
 //! force of the step's start, which measured first order at kt x 1000. Here every frozen
@@ -22,7 +25,7 @@
 //! oscillation sqrt(kt/m) while the contact sticks (a Stormer-Verlet pair then): stable for
 //! h sqrt(kt/m) < 2, i.e. more than 2 steps a period at 3 kHz and the paper's kt, 60 at kt x 1000.
 
-use super::{DriveVelocity, Equations, Params, DIM, VX, VY, ZX, ZY};
+use super::{Params, VX, VY, ZX, ZY};
 use crate::friction::lugre2d::{direction, SlipLaw};
 use crate::solve::{Ode, Work, MAX_DIM, MAX_STEPS_PER_DO_STEP};
 use nalgebra::Vector2;
@@ -37,14 +40,13 @@ impl Exponential {
     /// the integral of FFx in `y[Q]`.
     pub fn advance(
         &self,
-        p: &Params,
-        vd: DriveVelocity,
+        eq: &Stepper,
         t0: f64,
         t1: f64,
         y: &mut [f64],
         work: &mut Work,
     ) -> Result<(), String> {
-        let h_max = 1.0 / (p.f * f64::from(self.steps_per_period));
+        let h_max = 1.0 / (eq.p.f * f64::from(self.steps_per_period));
         // A hair of slack so an interval of exactly k steps is not split into k + 1.
         let steps = ((t1 - t0) / h_max * (1.0 - 1e-12)).ceil().max(1.0);
         if steps.is_nan() || steps > MAX_STEPS_PER_DO_STEP as f64 {
@@ -53,8 +55,7 @@ impl Exponential {
             ));
         }
         let h = (t1 - t0) / steps;
-        let eq = Equations { p, vd };
-        let mut signs = kinks(p, t0, y);
+        let mut signs = kinks(eq, t0, y);
         work.rhs_evaluations += 1;
         for i in 0..steps as u64 {
             // t from the index, not by accumulation, so long runs do not drift.
@@ -63,7 +64,7 @@ impl Exponential {
             } else {
                 t0 + (i + 1) as f64 * h
             };
-            signs = step_over_kinks(&eq, t0 + i as f64 * h, t_end, signs, y, work);
+            signs = step_over_kinks(eq, t0 + i as f64 * h, t_end, signs, y, work);
         }
         if y.iter().all(|v| v.is_finite()) {
             Ok(())
@@ -83,9 +84,20 @@ fn body_velocity(p: &Params, y: &[f64]) -> Vector2<f64> {
     }
 }
 
+/// The equations the steps advance: the planar ones or the 1D ones (`axial`).
+pub struct Stepper<'a> {
+    pub p: &'a Params,
+    pub eq: &'a dyn Ode,
+    pub axial: bool,
+}
+
 /// The arguments of the |.| in the slip rate (v1 and v2 for the split law, v1 + v2 for the
-/// total), whose sign changes are kinks of the right-hand side.
-fn kinks(p: &Params, t: f64, y: &[f64]) -> [f64; 2] {
+/// total; x' in 1D), whose sign changes are kinks of the right-hand side.
+fn kinks(eq: &Stepper, t: f64, y: &[f64]) -> [f64; 2] {
+    let p = eq.p;
+    if eq.axial {
+        return [body_velocity(p, y).x, 1.0];
+    }
     let c = p.contact(t, y);
     match p.slip {
         SlipLaw::Split => [c.v1, c.v2],
@@ -103,18 +115,19 @@ const MAX_PIECES: usize = 4;
 /// linear interpolation between the step's ends (an O(h^2) error in its position, O(h^3) in
 /// the state). `before` holds the arguments at `t`; returns them at `t_end`.
 fn step_over_kinks(
-    eq: &Equations,
+    eq: &Stepper,
     mut t: f64,
     t_end: f64,
     mut before: [f64; 2],
     y: &mut [f64],
     work: &mut Work,
 ) -> [f64; 2] {
+    let n = eq.eq.dim();
     let mut trial = [0.0; MAX_DIM];
     for piece in 0..MAX_PIECES {
-        trial[..DIM].copy_from_slice(&y[..DIM]);
+        trial[..n].copy_from_slice(&y[..n]);
         step(eq, t, t_end - t, &mut trial);
-        let after = kinks(eq.p, t_end, &trial);
+        let after = kinks(eq, t_end, &trial);
         work.steps += 1;
         // The mechanics' two right-hand sides and the kinks' (the bristle updates are algebraic).
         work.rhs_evaluations += 3;
@@ -126,12 +139,12 @@ fn step_over_kinks(
         }
         // A kink within 1 % of either end costs less than another piece would save.
         if !(0.01..=0.99).contains(&fraction) || piece + 1 == MAX_PIECES {
-            y[..DIM].copy_from_slice(&trial[..DIM]);
+            y[..n].copy_from_slice(&trial[..n]);
             return after;
         }
         let t_cut = t + fraction * (t_end - t);
         step(eq, t, t_cut - t, y);
-        before = kinks(eq.p, t_cut, y);
+        before = kinks(eq, t_cut, y);
         work.steps += 1;
         work.rhs_evaluations += 3;
         t = t_cut;
@@ -140,26 +153,42 @@ fn step_over_kinks(
 }
 
 /// One step over `[t, t + h]` (steps 1-4 of the module's comment).
-fn step(eq: &Equations, t: f64, h: f64, y: &mut [f64]) {
+fn step(eq: &Stepper, t: f64, h: f64, y: &mut [f64]) {
     let p = eq.p;
+    let n = eq.eq.dim();
     let z0 = Vector2::new(y[ZX], y[ZY]);
     let v0 = body_velocity(p, y);
+    // The bristle's update over `h` from `z0` to the body velocity `v1`.
+    let update = |h: f64, v1: Vector2<f64>, y: &mut [f64]| {
+        if eq.axial {
+            y[ZX] = bristle_1d(p, h, z0.x, v0.x, v1.x);
+        } else {
+            let z = bristle(p, t, h, z0, v0, v1);
+            y[ZX] = z.x;
+            y[ZY] = z.y;
+        }
+    };
     let mut k = [0.0; MAX_DIM];
     let mut mid = [0.0; MAX_DIM];
-    eq.rhs(t, &y[..DIM], &mut k[..DIM]);
-    for j in 0..DIM {
+    eq.eq.rhs(t, &y[..n], &mut k[..n]);
+    for j in 0..n {
         mid[j] = y[j] + 0.5 * h * k[j];
     }
-    let z_mid = bristle(p, t, 0.5 * h, z0, v0, body_velocity(p, &mid));
-    mid[ZX] = z_mid.x;
-    mid[ZY] = z_mid.y;
-    eq.rhs(t + 0.5 * h, &mid[..DIM], &mut k[..DIM]);
-    for j in (0..DIM).filter(|&j| j != ZX && j != ZY) {
+    update(0.5 * h, body_velocity(p, &mid), &mut mid);
+    eq.eq.rhs(t + 0.5 * h, &mid[..n], &mut k[..n]);
+    for j in (0..n).filter(|&j| j != ZX && j != ZY) {
         y[j] += h * k[j];
     }
-    let z1 = bristle(p, t, h, z0, v0, body_velocity(p, y));
-    y[ZX] = z1.x;
-    y[ZY] = z1.y;
+    update(h, body_velocity(p, y), y);
+}
+
+/// [`bristle`] without vibration: the slip rate |x'|/g(x') depends on the velocity alone, so
+/// the centroid comes from the end's velocity and the rate from the centroid's, no predictor.
+fn bristle_1d(p: &Params, h: f64, z0: f64, v0: f64, v1: f64) -> f64 {
+    let theta = centroid(p.law.slip_rate(v1) * h);
+    let w = v0 + (v1 - v0) * theta;
+    let (decay, weight) = relaxation(p.law.slip_rate(w), h);
+    z0 * decay + w * weight
 }
 
 /// The bristle at `t + h` from `z0` at `t`, the body velocity going linearly from `v0` to `v1`
@@ -204,11 +233,17 @@ fn bristle(
 
 /// Exact solution of z' = w - a z over `h` for constant `w` and `a >= 0`.
 fn relax(z0: Vector2<f64>, w: Vector2<f64>, a: f64, h: f64) -> Vector2<f64> {
+    let (decay, weight) = relaxation(a, h);
+    z0 * decay + w * weight
+}
+
+/// `(e^{-ah}, (1 - e^{-ah})/a)`: z(h) = decay z0 + weight w.
+fn relaxation(a: f64, h: f64) -> (f64, f64) {
     let ah = a * h;
     // e^{-ah} - 1 by exp_m1, so (1 - e^{-ah})/a stays accurate (and tends to h) as a h -> 0.
     let decay_m1 = (-ah).exp_m1();
     let weight = if ah > 0.0 { -decay_m1 / a } else { h };
-    z0 * (1.0 + decay_m1) + w * weight
+    (1.0 + decay_m1, weight)
 }
 
 /// The centroid, as a fraction of the step, of exp(-x (1 - s)) on s in [0, 1]:

@@ -185,3 +185,146 @@ fn radau5_handles_the_stiff_contact() {
         "{implicit_work} vs {explicit_work}"
     );
 }
+
+/// Every output but `kept` hidden, plus the parameters in `fixed`.
+fn scope_keeping(kept: &[u32], fixed: &[u32]) -> Scope {
+    let mut hidden: Vec<u32> = TABLE
+        .variables
+        .iter()
+        .filter(|v| v.causality == crate::interface::variable::Causality::Output)
+        .map(|v| v.value_reference)
+        .filter(|vr| !kept.contains(vr))
+        .collect();
+    hidden.extend_from_slice(fixed);
+    Scope::hiding(hidden)
+}
+
+/// FFx after each of `steps` communication steps of `h`.
+fn ffx_trace(v: &ValueSet, scope: &Scope, h: f64, steps: u32) -> (Vec<f64>, Transverse) {
+    let mut scene = Transverse::with_scope(v, 0.0, scope).unwrap();
+    let trace = (0..steps)
+        .map(|_| {
+            scene.do_step(h, v).unwrap();
+            scene.forces().1
+        })
+        .collect();
+    (trace, scene)
+}
+
+fn max_difference(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+/// With va or eta fixed at 0 the scene takes the 1D path: 6 states with the mean read, 5
+/// without; the full model and a scope that leaves va free keep all 9.
+#[test]
+fn trimmed_scene_without_vibration_integrates_the_axial_states_only() {
+    let mut v = values("dopri5", "split");
+    v.set(vr::VA, 0.0);
+    let dim =
+        |v: &ValueSet, scope: &Scope| Transverse::with_scope(v, 0.0, scope).unwrap().trim.dim();
+    assert_eq!(dim(&v, &Scope::full()), 9);
+    assert_eq!(dim(&v, &scope_keeping(&[vr::FFX], &[])), 9);
+    assert_eq!(
+        dim(&v, &scope_keeping(&[vr::FFX, vr::FFX_MEAN], &[vr::VA])),
+        6
+    );
+    assert_eq!(dim(&v, &scope_keeping(&[vr::FFX], &[vr::VA])), 5);
+    v.set(vr::VA, 2e-3);
+    v.set(vr::ETA, 0.0);
+    assert_eq!(dim(&v, &scope_keeping(&[vr::FFX], &[vr::ETA])), 5);
+    // A fixed va that is not 0 keeps the plane.
+    assert_eq!(dim(&v, &scope_keeping(&[vr::FFX], &[vr::VA])), 9);
+    // So does the paper's two-phase scheme, written in the plane; exponential goes 1D.
+    for (solver, expected) in [("two_phase", 9), ("exponential", 5)] {
+        v.set(vr::SOLVER, f64::from(SOLVER.value_of(solver).unwrap()));
+        assert_eq!(dim(&v, &scope_keeping(&[vr::FFX], &[vr::ETA])), expected);
+    }
+}
+
+/// Oracle: the full scene. Without vibration the 1D equations are the planar ones with y = 0;
+/// rk4 and exponential on the same steps (communication step = period, so the same sub-steps)
+/// differ only by round-off (e_x = z_x / |z_x| is 1 to an ulp; z_x keeps its sign here, so the
+/// exponential scheme's pieces end at the same kinks); dopri5 ends its steps on other kinks (the
+/// full scene also stops where v1 = e_x x' changes sign with z_x), so the two meet to the
+/// tolerance: rtol 1e-10 on a force of FC, bounded here by 1e-8 FC over 10 ms of stick and slip
+/// from rest.
+#[test]
+fn trimmed_scene_without_vibration_matches_the_full_one() {
+    let fixed = [vr::VA];
+    for (solver, bound, h) in [
+        ("rk4", 1e-11, 1.0 / 3000.0),
+        ("exponential", 1e-11, 1.0 / 3000.0),
+        ("dopri5", 1e-8, 1e-4f64),
+    ] {
+        for slip in ["split", "total"] {
+            let mut v = values(solver, slip);
+            v.set(vr::VA, 0.0);
+            let steps = (0.01 / h).round() as u32;
+            let (full, a) = ffx_trace(&v, &Scope::full(), h, steps);
+            let (trimmed, b) = ffx_trace(&v, &scope_keeping(&[vr::FFX], &fixed), h, steps);
+            assert_eq!(b.trim.dim(), 5);
+            let d = max_difference(&full, &trimmed);
+            assert!(d < bound * a.fc, "{solver} {slip}: {d:e} N");
+            // The body really moved: stick and slip from rest up to the drive's pull.
+            assert!(a.position().0 > 1e-6, "{solver} {slip}");
+        }
+    }
+}
+
+/// Oracle: the full scene at rtol 1e-12. With FFx_mean hidden the sub-steps no longer end on
+/// period boundaries, so dopri5 takes other steps where they do not coincide: the trimmed
+/// scene's FFx must be as close to the tight run as the full scene's (within twice its error
+/// plus 1e-9 FC), whether the communication points fall on period boundaries (then the
+/// sub-steps are the same and so is FFx, bit for bit) or not.
+#[test]
+fn trimmed_scene_without_the_mean_matches_the_full_one() {
+    let mut v = issue_case("dopri5", "split", 1.0, 1e-9);
+    v.set(vr::INITIAL, f64::from(INITIAL.value_of("rest").unwrap()));
+    let mut tight = v.clone();
+    tight.set(vr::TOLERANCE, 1e-12);
+    let scope = scope_keeping(&[vr::FFX], &[]);
+    for (h, steps) in [(1.0 / 3000.0, 20), (1e-4, 70)] {
+        let (reference, _) = ffx_trace(&tight, &Scope::full(), h, steps);
+        let (full, a) = ffx_trace(&v, &Scope::full(), h, steps);
+        let (trimmed, b) = ffx_trace(&v, &scope, h, steps);
+        assert_eq!(b.trim.dim(), 9);
+        if steps == 20 {
+            // Communication points on the period boundaries: the same sub-steps, bit for bit.
+            assert_eq!(full, trimmed);
+        }
+        let (e_full, e_trimmed) = (
+            max_difference(&full, &reference),
+            max_difference(&trimmed, &reference),
+        );
+        assert!(e_full < 1e-5 * a.fc, "h {h}: full {e_full:e} N");
+        assert!(
+            e_trimmed < 2.0 * e_full + 1e-9 * a.fc,
+            "h {h}: trimmed {e_trimmed:e} N, full {e_full:e} N"
+        );
+    }
+}
+
+/// save/restore of a trimmed scene continues it exactly (1D and planar).
+#[test]
+fn trimmed_restore_continues_identically() {
+    for (va, fixed) in [(0.0, vec![vr::VA]), (2e-3, vec![])] {
+        for solver in ["dopri5", "radau5", "rk4", "exponential"] {
+            let mut v = values(solver, "split");
+            v.set(vr::VA, va);
+            let scope = scope_keeping(&[vr::FFX, vr::X], &fixed);
+            let mut a = Transverse::with_scope(&v, 0.0, &scope).unwrap();
+            a.do_step(1e-4, &v).unwrap();
+            let saved = a.save();
+            a.do_step(1e-4, &v).unwrap();
+            let mut b = Transverse::with_scope(&v, 0.0, &scope).unwrap();
+            b.restore(&saved).unwrap();
+            b.do_step(1e-4, &v).unwrap();
+            assert_eq!(a.forces(), b.forces(), "{solver} va {va}");
+            assert_eq!(a.position(), b.position(), "{solver} va {va}");
+        }
+    }
+}

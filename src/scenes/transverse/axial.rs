@@ -1,0 +1,70 @@
+//! Scene T without vibration (va or eta fixed at 0 by a scene file): the support point M stays
+//! put, nothing pushes the body or the bristle across, so y, y' and z_y stay 0 and the contact is
+//! 1D LuGre along x (SPEC.md, Fig. 4a). Both slip laws agree there: v2 = -e.v_M = 0, so
+//! |v1|/g(v1) + |v2|/g(v2) = |v1 + v2|/g(v1 + v2) = |x'|/g(x'), and with e = (sgn z_x, 0)
+//! `FFx = FF e_x = kt z_x + ht(x') z_x' + hv x'`, `z_x' = x' - |x'|/g(x') z_x`, the power on
+//! the contact FF (v1 + v2) = FFx x'.
+//!
+//! The state is the general one's first `dim` entries, `[x, x', z_x, lambda, w, q]` (q only when
+//! the mean force is read), so the scene's outputs read it unchanged.
+
+use super::{DriveVelocity, Params, BAND, LAMBDA, Q, VX, W, X, ZX};
+use crate::solve::dopri::{Switching, MAX_SWITCHES};
+use crate::solve::Ode;
+
+pub struct Axial<'a> {
+    pub p: &'a Params,
+    pub vd: DriveVelocity,
+    /// 5 without the force integral q, 6 with it.
+    pub dim: usize,
+}
+
+impl Axial<'_> {
+    fn velocity(&self, y: &[f64]) -> f64 {
+        if self.p.held {
+            0.0
+        } else {
+            y[VX]
+        }
+    }
+}
+
+impl Ode for Axial<'_> {
+    fn dim(&self) -> usize {
+        self.dim
+    }
+
+    fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        let p = self.p;
+        let v = self.velocity(y);
+        let vd = self.vd.at(t);
+        let zdot = v - p.law.slip_rate(v) * y[ZX];
+        let ffx = p.law.force(y[ZX], zdot, v);
+        if p.held {
+            dydt[X] = 0.0;
+            dydt[VX] = 0.0;
+        } else {
+            dydt[X] = v;
+            dydt[VX] = (p.drive_force(y, vd) - ffx) / p.m;
+        }
+        dydt[ZX] = zdot;
+        dydt[LAMBDA] = vd - v;
+        dydt[W] = ffx * v;
+        if self.dim > Q {
+            dydt[Q] = ffx;
+        }
+    }
+}
+
+impl Switching for Axial<'_> {
+    /// The Stribeck band's edges and the kink of |x'| (the general scene's v1 = e_x x' also
+    /// changes sign where z_x does, which is no kink here).
+    fn switches(&self, _t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
+        let v = self.velocity(y);
+        let band = BAND * self.p.law.vs;
+        out[0] = v - band;
+        out[1] = v + band;
+        out[2] = v;
+        3
+    }
+}
