@@ -24,18 +24,37 @@ use exact::{Event, Mode, State, Switch};
 use solver::Solver;
 use std::f64::consts::TAU;
 
-/// The regularised equations of motion, `y = (u, u', W)` with W the friction work, the integral
-/// of H u' (a quadrature state, integrated to the solver's order; left out when W_diss is
-/// hidden).
+/// The linear oscillator `m u'' + c u' + k u = F(t)` and its forcing: what the regularised and
+/// the exact cores share.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Equations {
+pub struct Forced {
     pub m: f64,
     pub c: f64,
     pub k: f64,
     pub w: f64,
     /// Sine amplitude; unused when `input`.
     pub p: f64,
+    /// Whether the force is the input, held over each step.
     pub input: bool,
+}
+
+impl Forced {
+    /// The excitation force at t (`held` is the input over the current step).
+    pub fn force(&self, t: f64, held: f64) -> f64 {
+        if self.input {
+            held
+        } else {
+            self.p * (self.w * t).sin()
+        }
+    }
+}
+
+/// The regularised equations of motion, `y = (u, u', W)` with W the friction work, the integral
+/// of H u' (a quadrature state, integrated to the solver's order; left out when W_diss is
+/// hidden).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Equations {
+    pub plant: Forced,
     /// The input force held over the current step.
     pub held: f64,
     pub law: Regularized,
@@ -44,25 +63,18 @@ pub struct Equations {
 }
 
 impl Equations {
-    pub fn force(&self, t: f64) -> f64 {
-        if self.input {
-            self.held
-        } else {
-            self.p * (self.w * t).sin()
-        }
-    }
-
     /// rk4 blows up (through many steps of finite nonsense) where h times an eigenvalue of the
     /// linear part `m u'' + c u' + k u`, which acts at every instant, leaves its stability
     /// region, which lies within |h lambda| < 3 (2.96 at most). The friction slope is left out:
     /// it acts only while |u'| < D, and rk4 crosses that band without harm when the motion
     /// does not stick there.
     pub fn require_rk4_stable(&self, h: f64) -> Result<(), String> {
-        let disc = self.c * self.c - 4.0 * self.m * self.k;
+        let Forced { m, c, k, .. } = self.plant;
+        let disc = c * c - 4.0 * m * k;
         let rate = if disc >= 0.0 {
-            (self.c + disc.sqrt()) / (2.0 * self.m)
+            (c + disc.sqrt()) / (2.0 * m)
         } else {
-            (self.k / self.m).sqrt()
+            (k / m).sqrt()
         };
         if h * rate <= 3.0 {
             Ok(())
@@ -76,7 +88,9 @@ impl Equations {
     /// `(H, C, u'')` at (t, u, u').
     pub fn evaluate(&self, t: f64, u: f64, v: f64) -> (f64, f64, f64) {
         let (h, c) = self.law.eval(v);
-        (h, c, (self.force(t) - self.c * v - h - self.k * u) / self.m)
+        let pl = &self.plant;
+        let a = (pl.force(t, self.held) - pl.c * v - h - pl.k * u) / pl.m;
+        (h, c, a)
     }
 }
 
@@ -98,6 +112,9 @@ impl Ode for Equations {
     }
 }
 
+/// One per instance, built once: the sizes of the variants do not matter, and the regularised
+/// core, which every right-hand side evaluation reads, stays unboxed.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug, PartialEq)]
 enum Core {
     Exact(Box<Switch>),
@@ -191,20 +208,21 @@ impl Oscillator {
                 "ha = h*Da/D = {ha} is not finite: expected Da/D of moderate size (h = {h}, D = {d}, Da = {da})"
             ));
         }
-        let input = values.item(vr::FORCE_SOURCE) == "input";
+        let plant = Forced {
+            m,
+            c,
+            k,
+            w,
+            p,
+            input: values.item(vr::FORCE_SOURCE) == "input",
+        };
         let held = require_finite(values, vr::P_IN)?;
         let period = TAU / w;
         let law = values.item(vr::LAW);
         let core = match law {
             "exact" | "exact_stiction" => {
                 let hs = if law == "exact" { h } else { h + ha };
-                Core::Exact(Box::new(Switch::new(
-                    (m, c, k, w),
-                    p,
-                    input,
-                    (h, hs),
-                    steps,
-                )?))
+                Core::Exact(Box::new(Switch::new(plant, (h, hs), steps)?))
             }
             _ => {
                 let law = match law {
@@ -214,12 +232,7 @@ impl Oscillator {
                     _ => Regularized::Trigonometric { h, d },
                 };
                 let equations = Equations {
-                    m,
-                    c,
-                    k,
-                    w,
-                    p,
-                    input,
+                    plant,
                     held,
                     law,
                     with_work: scope.exposes(vr::W_DISS),

@@ -8,6 +8,7 @@
 //! to round-off; a stuck phase ends where |F - k u| reaches the breakaway force, in closed form
 //! (asin) for the sine forcing. So events fall anywhere inside a communication step.
 
+use super::Forced;
 use crate::solve::expm::{expm, mul_vec, Matrix};
 use std::f64::consts::{PI, TAU};
 
@@ -60,14 +61,7 @@ pub struct State {
 /// Parameters and the precomputed propagator of one grid step.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Switch {
-    pub m: f64,
-    pub c: f64,
-    pub k: f64,
-    pub w: f64,
-    /// Amplitude of the sine forcing; 0 when the force is an input.
-    pub p: f64,
-    /// Whether the force is the held input.
-    pub input: bool,
+    pub plant: Forced,
     /// Sliding (kinetic) friction force.
     pub h: f64,
     /// Breakaway (static) friction force, h or h + ha.
@@ -83,13 +77,8 @@ pub struct Switch {
 const EVENTS_PER_GRID: f64 = 50.0;
 
 impl Switch {
-    pub fn new(
-        (m, c, k, w): (f64, f64, f64, f64),
-        p: f64,
-        input: bool,
-        (h, hs): (f64, f64),
-        steps_per_period: f64,
-    ) -> Result<Self, String> {
+    pub fn new(plant: Forced, (h, hs): (f64, f64), steps_per_period: f64) -> Result<Self, String> {
+        let Forced { m, c, k, w, .. } = plant;
         let mut generator = [[0.0; 5]; 5];
         generator[0][1] = 1.0;
         generator[1] = [-k / m, -c / m, 1.0 / m, 0.0, 1.0 / m];
@@ -112,12 +101,7 @@ impl Switch {
         }
         let grid_propagator = expm(&scaled(&generator, grid))?;
         Ok(Switch {
-            m,
-            c,
-            k,
-            w,
-            p,
-            input,
+            plant,
             h,
             hs,
             grid,
@@ -128,16 +112,12 @@ impl Switch {
 
     /// The excitation force at t (`held` is the input over the current step).
     pub fn force(&self, t: f64, held: f64) -> f64 {
-        if self.input {
-            held
-        } else {
-            self.p * (self.w * t).sin()
-        }
+        self.plant.force(t, held)
     }
 
     /// The mode a mass at rest takes: stuck while the static friction can hold it.
     pub fn settle(&self, t: f64, u: f64, held: f64) -> Mode {
-        let f = self.force(t, held) - self.k * u;
+        let f = self.force(t, held) - self.plant.k * u;
         if f.abs() <= self.hs {
             Mode::Stuck
         } else {
@@ -157,22 +137,22 @@ impl Switch {
     /// `(H, u'')` in a state: `H = s h` sliding; stuck, the force that holds the mass (clipped
     /// to the breakaway force, so an input set beyond it shows the acceleration it will cause).
     pub fn friction_and_acceleration(&self, st: &State, held: f64) -> (f64, f64) {
-        let f = self.force(st.t, held) - self.k * st.u - self.c * st.v;
+        let f = self.force(st.t, held) - self.plant.k * st.u - self.plant.c * st.v;
         let friction = match st.mode {
             Mode::Sliding(s) => s * self.h,
             Mode::Stuck => f.clamp(-self.hs, self.hs),
         };
-        (friction, (f - friction) / self.m)
+        (friction, (f - friction) / self.plant.m)
     }
 
     fn augmented(&self, t: f64, u: f64, v: f64, s: f64, held: f64) -> [f64; 5] {
-        let (sin, cos) = if self.input {
+        let (sin, cos) = if self.plant.input {
             (0.0, 0.0)
         } else {
-            (self.w * t).sin_cos()
+            (self.plant.w * t).sin_cos()
         };
-        let q = if self.input { held } else { 0.0 } - s * self.h;
-        [u, v, self.p * sin, self.p * cos, q]
+        let q = if self.plant.input { held } else { 0.0 } - s * self.h;
+        [u, v, self.plant.p * sin, self.plant.p * cos, q]
     }
 
     fn acceleration(&self, y: &[f64; 5]) -> f64 {
@@ -225,7 +205,7 @@ impl Switch {
     /// A stuck phase: ends at t_end or where |F - k u| passes the breakaway force.
     fn stuck(&self, st: &mut State, t_end: f64, held: f64) {
         st.v = 0.0;
-        let f = self.force(st.t, held) - self.k * st.u;
+        let f = self.force(st.t, held) - self.plant.k * st.u;
         if f.abs() > self.hs {
             st.mode = Mode::Sliding(f.signum());
             return;
@@ -243,30 +223,30 @@ impl Switch {
     /// with the direction of the slip that follows; None if it never does (or the force is a
     /// held input, constant over the step).
     pub fn breakaway(&self, t: f64, u: f64) -> Option<(f64, f64)> {
-        if self.input || self.p == 0.0 {
+        if self.plant.input || self.plant.p == 0.0 {
             return None;
         }
-        let phase = (self.w * t).rem_euclid(TAU);
+        let phase = (self.plant.w * t).rem_euclid(TAU);
         // Crossings a hair behind the current phase are round-off of one happening now.
-        let behind = 1e-12 * (1.0 + (self.w * t).abs());
+        let behind = 1e-12 * (1.0 + (self.plant.w * t).abs());
         let mut best: Option<(f64, f64)> = None;
         let mut consider = |crossing: f64, s: f64| {
             let mut ahead = (crossing - phase).rem_euclid(TAU);
             if ahead > TAU - behind {
                 ahead = 0.0;
             }
-            let time = t + ahead / self.w;
+            let time = t + ahead / self.plant.w;
             if best.is_none_or(|(b, _)| time < b) {
                 best = Some((time, s));
             }
         };
         // Upward through +hs: P sin = k u + hs with sin rising (cos > 0).
-        let up = (self.k * u + self.hs) / self.p;
+        let up = (self.plant.k * u + self.hs) / self.plant.p;
         if up.abs() < 1.0 {
             consider(up.asin(), 1.0);
         }
         // Downward through -hs: P sin = k u - hs with sin falling (cos < 0).
-        let down = (self.k * u - self.hs) / self.p;
+        let down = (self.plant.k * u - self.hs) / self.plant.p;
         if down.abs() < 1.0 {
             consider(PI - down.asin(), -1.0);
         }
