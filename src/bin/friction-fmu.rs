@@ -4,8 +4,9 @@
 //!   friction-fmu build FILE.toml... [--out DIR]
 //!                                    pack each scene file into DIR/<name>.fmu: the model's
 //!                                    library with only the variables the file keeps
-//!   friction-fmu run [--out DIR]     build, then print each scene's tables beside the papers'
-//!                                    and write figures into DIR/figures (the default command)
+//!   friction-fmu run [--out DIR]     build, pack the shipped scenes/*.toml into DIR/scenes, then
+//!                                    print each scene's tables beside the papers' and write
+//!                                    figures into DIR/figures (the default command)
 //!   friction-fmu report [--out DIR]  error against run time of every solver of every scene:
 //!                                    DIR/<scene>.md tables and DIR/<scene>.svg plots
 //!                                    (default DIR: report); trimmed scenes against the full
@@ -15,7 +16,7 @@ use friction_fmu::{package, report, scene_file, scenes};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: friction-fmu [build [SCENE.toml...]|run|report] [--out DIR]\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out)\n          or, given scene files, each into DIR/<name>.fmu with only the variables it keeps\n  run     build, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.svg (default DIR: report), trimmed against full scenes: DIR/trimmed.md";
+const USAGE: &str = "usage: friction-fmu [build [SCENE.toml...]|run|report] [--out DIR]\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out)\n          or, given scene files, each into DIR/<name>.fmu with only the variables it keeps\n  run     build, pack scenes/*.toml into DIR/scenes, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.svg (default DIR: report), trimmed against full scenes: DIR/trimmed.md";
 
 /// The FMU library built beside this program.
 fn library() -> Result<PathBuf, String> {
@@ -66,8 +67,26 @@ fn build(out: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// The scene files shipped in `scenes/` (one per figure and table of the papers), when run from
+/// the source tree.
+fn shipped_scene_files() -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir("scenes")
+        .map(|dir| {
+            dir.filter_map(|entry| entry.ok().map(|e| e.path()))
+                .filter(|path| path.extension().is_some_and(|ext| ext == "toml"))
+                .collect()
+        })
+        .unwrap_or_default();
+    files.sort();
+    files
+}
+
 fn run(out: &Path) -> Result<(), String> {
     build(out)?;
+    let files = shipped_scene_files();
+    if !files.is_empty() {
+        build_scenes(&files, &out.join("scenes"))?;
+    }
     let figures = out.join("figures");
     std::fs::create_dir_all(&figures).map_err(|e| format!("{}: {e}", figures.display()))?;
     println!();
