@@ -1,0 +1,167 @@
+//! One run of one solver over a case: the states at every restart point and the right-hand-side
+//! evaluations it took. Every solver starts afresh at each restart point, as an FMU's doStep does.
+
+use crate::cases::Case;
+use diffsol::{NalgebraLU, NalgebraMat, OdeBuilder, OdeSolverMethod, OdeSolverStopReason, Vector};
+use friction_fmu::solve::radau::Radau5;
+use friction_fmu::solve::{Integrator, Work, MAX_DIM};
+use std::cell::{Cell, RefCell};
+
+pub struct Run {
+    /// States at each grid point.
+    pub states: Vec<Vec<f64>>,
+    pub rhs_evaluations: u64,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Method {
+    /// Our radau5 with no memory across restarts (initial step guessed each time).
+    Radau5Cold,
+    /// Our radau5 carrying its next step size across restarts, as the scenes do.
+    Radau5Warm,
+    Bdf,
+    TrBdf2,
+    Esdirk34,
+}
+
+impl Method {
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Radau5Cold => "radau5 (cold restart)",
+            Method::Radau5Warm => "radau5 (h carried)",
+            Method::Bdf => "diffsol bdf",
+            Method::TrBdf2 => "diffsol tr_bdf2",
+            Method::Esdirk34 => "diffsol esdirk34",
+        }
+    }
+}
+
+pub fn run(case: &Case, method: Method, rtol: f64, atol: f64) -> Result<Run, String> {
+    match method {
+        Method::Radau5Cold => radau(case, rtol, atol, false),
+        Method::Radau5Warm => radau(case, rtol, atol, true),
+        _ => diffsol_run(case, method, rtol, atol),
+    }
+}
+
+fn radau(case: &Case, rtol: f64, atol: f64, warm: bool) -> Result<Run, String> {
+    let n = case.y0.len();
+    let mut solver = Radau5::new(rtol, atol, f64::INFINITY);
+    solver.atol_scale[..n].copy_from_slice(&case.scale);
+    let mut work = Work::default();
+    let mut y = [0.0; MAX_DIM];
+    y[..n].copy_from_slice(&case.y0);
+    let mut t = case.t0;
+    let mut states = Vec::with_capacity(case.grid.len());
+    for &t1 in &case.grid {
+        if !warm {
+            solver.h_next = 0.0;
+        }
+        solver.integrate(case.ode.as_ref(), t, t1, &mut y[..n], &mut work)?;
+        states.push(y[..n].to_vec());
+        t = t1;
+    }
+    Ok(Run {
+        states,
+        rhs_evaluations: work.rhs_evaluations,
+    })
+}
+
+type M = NalgebraMat<f64>;
+type LS = NalgebraLU<f64>;
+
+/// Runs a diffsol solver from a freshly made solver state at every restart point.
+fn diffsol_run(case: &Case, method: Method, rtol: f64, atol: f64) -> Result<Run, String> {
+    let n = case.y0.len();
+    let ode = case.ode.as_ref();
+    let evaluations = Cell::new(0u64);
+    let start = RefCell::new(case.y0.clone());
+    // Forward-difference J v (the same increments as radau5's Jacobian), reusing f(t, x) of the
+    // last call at the same point so a dense Jacobian costs n + 1 evaluations, as in radau5.
+    let cache: RefCell<(f64, Vec<f64>, Vec<f64>)> =
+        RefCell::new((f64::NAN, vec![f64::NAN; n], vec![0.0; n]));
+    let scale = case.scale.clone();
+    let rhs = |x: &[f64], _p: &[f64], t: f64, y: &mut [f64]| {
+        evaluations.set(evaluations.get() + 1);
+        ode.rhs(t, x, y);
+    };
+    let jac = |x: &[f64], _p: &[f64], t: f64, v: &[f64], y: &mut [f64]| {
+        let mut c = cache.borrow_mut();
+        if !(c.0 == t && c.1 == x) {
+            c.0 = t;
+            c.1.copy_from_slice(x);
+            ode.rhs(t, x, &mut c.2);
+            evaluations.set(evaluations.get() + 1);
+        }
+        let mut delta = f64::INFINITY;
+        let mut norm = 0.0f64;
+        for i in 0..n {
+            if v[i] != 0.0 {
+                let d = (f64::EPSILON * x[i].abs().max(atol * scale[i]).max(1e-12)).sqrt();
+                delta = delta.min(d / v[i].abs());
+                norm = norm.max(v[i].abs());
+            }
+        }
+        if norm == 0.0 {
+            y.fill(0.0);
+            return;
+        }
+        let mut xp = [0.0; 16];
+        for i in 0..n {
+            xp[i] = x[i] + delta * v[i];
+        }
+        ode.rhs(t, &xp[..n], y);
+        evaluations.set(evaluations.get() + 1);
+        for (yi, fi) in y.iter_mut().zip(&c.2) {
+            *yi = (*yi - fi) / delta;
+        }
+    };
+    let mut problem = OdeBuilder::<M>::new()
+        .rtol(rtol)
+        .atol(case.scale.iter().map(|s| atol * s).collect::<Vec<_>>())
+        .rhs_implicit(rhs, jac)
+        .init(
+            |_p: &[f64], _t: f64, y: &mut [f64]| y.copy_from_slice(&start.borrow()),
+            n,
+        )
+        .build()
+        .map_err(|e| e.to_string())?;
+    let mut t = case.t0;
+    let mut states = Vec::with_capacity(case.grid.len());
+    for &t1 in &case.grid {
+        problem.t0 = t;
+        let y = match method {
+            Method::Bdf => advance(problem.bdf::<LS>(), t1)?,
+            Method::TrBdf2 => advance(problem.tr_bdf2::<LS>(), t1)?,
+            Method::Esdirk34 => advance(problem.esdirk34::<LS>(), t1)?,
+            _ => unreachable!("radau5 runs elsewhere"),
+        };
+        start.borrow_mut().copy_from_slice(&y);
+        states.push(y);
+        t = t1;
+    }
+    Ok(Run {
+        states,
+        rhs_evaluations: evaluations.get(),
+    })
+}
+
+/// Steps a fresh solver to t1 exactly and returns the state there.
+fn advance<'a, Eqn, S>(
+    solver: Result<S, diffsol::error::DiffsolError>,
+    t1: f64,
+) -> Result<Vec<f64>, String>
+where
+    Eqn: diffsol::OdeEquations<T = f64> + 'a,
+    S: OdeSolverMethod<'a, Eqn>,
+{
+    let mut solver = solver.map_err(|e| e.to_string())?;
+    solver.set_stop_time(t1).map_err(|e| e.to_string())?;
+    loop {
+        match solver.step().map_err(|e| e.to_string())? {
+            OdeSolverStopReason::TstopReached => break,
+            OdeSolverStopReason::InternalTimestep | OdeSolverStopReason::RootFound(..) => {}
+        }
+    }
+    Ok(solver.state().y.clone_as_vec())
+}
