@@ -1,17 +1,22 @@
 //! The three test problems: the same equations for every solver, with the restart grid (the
 //! communication points where a co-simulation step ends and the integrator starts afresh).
 
+use friction_fmu::friction::lugre2d::SlipLaw;
 use friction_fmu::friction::regularized::Regularized;
 use friction_fmu::interface::transverse::{vr, TABLE};
 use friction_fmu::interface::values::ValueSet;
 use friction_fmu::scenes::oscillator::Equations;
 use friction_fmu::scenes::transverse::{Params, Transverse};
+use friction_fmu::scenes::Scene;
+use friction_fmu::solve::dopri::{Switching, MAX_SWITCHES};
 use friction_fmu::solve::Ode;
 use std::f64::consts::PI;
 
 pub struct Case {
     pub name: String,
     pub ode: Box<dyn Ode>,
+    /// The same equations with their kinks as switching functions, where located kinks apply.
+    pub switching: Option<Box<dyn Switching>>,
     pub y0: Vec<f64>,
     pub t0: f64,
     /// Restart points after t0; the last is the end of the run.
@@ -47,6 +52,7 @@ pub fn linear() -> Case {
         t0: 0.0,
         grid: grid(0.0, 0.01, 1000),
         scale: vec![1.0],
+        switching: None,
         exact: Some(|t| vec![t.cos() + (-1000.0 * t).exp()]),
     }
 }
@@ -69,6 +75,7 @@ pub fn oscillator(d: f64) -> Case {
             "scene O, trigonometric, D = {d:e}: (u, u', W), 0..120 pi, restart every pi/50 (6000)"
         ),
         ode: Box::new(equations),
+        switching: None,
         y0: vec![0.0, 0.0, 0.0],
         t0: 0.0,
         grid: grid(0.0, PI / 50.0, 6000),
@@ -114,10 +121,36 @@ impl Ode for TransverseOde {
     }
 }
 
+/// The kinks of the slip law (the scene's `Switching`): the edges of the Stribeck band
+/// |v1 + v2| < 4 vs, and v1 + v2 = 0 (total) or v1 = 0, v2 = 0 (split).
+impl Switching for TransverseOde {
+    fn switches(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
+        let c = self.p.contact(t, y);
+        let vr = c.v1 + c.v2;
+        let band = 4.0 * self.p.law.vs;
+        out[0] = vr - band;
+        out[1] = vr + band;
+        match self.p.slip {
+            SlipLaw::Split => {
+                out[2] = c.v1;
+                out[3] = c.v2;
+                4
+            }
+            SlipLaw::Total => {
+                out[2] = vr;
+                3
+            }
+        }
+    }
+}
+
 /// The scene's parameter set: defaults, kt x `kt_factor`, slip law `total`, solver radau5 at
-/// `tolerance`.
-pub fn transverse_values(kt_factor: f64, tolerance: f64) -> ValueSet {
+/// `tolerance`, from rest or from steady sliding.
+pub fn transverse_values(kt_factor: f64, tolerance: f64, sliding: bool) -> ValueSet {
     let mut values = ValueSet::start(&TABLE);
+    if sliding {
+        values.set(vr::INITIAL, 2.0);
+    }
     values.set(vr::KT, values.real(vr::KT) * kt_factor);
     values.set(vr::SLIP_LAW, 2.0); // total
     values.set(vr::SOLVER, 4.0); // radau5
@@ -125,9 +158,9 @@ pub fn transverse_values(kt_factor: f64, tolerance: f64) -> ValueSet {
     values
 }
 
-/// Scene T at kt x 1000, from rest, restarting at every vibration period over `periods`.
-pub fn transverse(kt_factor: f64, periods: usize) -> Case {
-    let values = transverse_values(kt_factor, 1e-10);
+/// Scene T at kt x `kt_factor`, restarting at every vibration period over `periods`.
+pub fn transverse(kt_factor: f64, periods: usize, sliding: bool) -> Case {
+    let values = transverse_values(kt_factor, 1e-10, sliding);
     let scene = Transverse::new(&values, 0.0).expect("scene T parameters");
     let p = scene.p;
     let vd = values.real(vr::VD);
@@ -147,11 +180,14 @@ pub fn transverse(kt_factor: f64, periods: usize) -> Case {
     ];
     Case {
         name: format!(
-            "scene T, slip law total, kt x {kt_factor}: 9 states, from rest, restart every period 1/{} s ({periods})",
+            "scene T, slip law total, kt x {kt_factor}: 9 states, from {}, restart every period 1/{} s ({periods})",
+            if sliding { "steady sliding" } else { "rest" },
             p.f
         ),
         ode: Box::new(TransverseOde { p, vd }),
-        y0: vec![0.0; 9],
+        switching: Some(Box::new(TransverseOde { p, vd })),
+        // The scene's saved state is [t, vd, y..].
+        y0: scene.save()[2..11].to_vec(),
         t0: 0.0,
         grid: grid(0.0, 1.0 / p.f, periods),
         scale,

@@ -3,6 +3,7 @@
 
 use crate::cases::Case;
 use diffsol::{NalgebraLU, NalgebraMat, OdeBuilder, OdeSolverMethod, OdeSolverStopReason, Vector};
+use friction_fmu::solve::dopri::MAX_SWITCHES;
 use friction_fmu::solve::radau::Radau5;
 use friction_fmu::solve::{Integrator, Work, MAX_DIM};
 use std::cell::{Cell, RefCell};
@@ -19,9 +20,13 @@ pub enum Method {
     Radau5Cold,
     /// Our radau5 carrying its next step size across restarts, as the scenes do.
     Radau5Warm,
+    /// Our radau5 (h carried) ending its steps on the kinks, as scene T runs it.
+    Radau5Kinks,
     Bdf,
     TrBdf2,
     Esdirk34,
+    /// diffsol's bdf with the kinks as root functions, restarted at each root found.
+    BdfKinks,
 }
 
 impl Method {
@@ -29,7 +34,9 @@ impl Method {
         match self {
             Method::Radau5Cold => "radau5 (cold restart)",
             Method::Radau5Warm => "radau5 (h carried)",
+            Method::Radau5Kinks => "radau5 (h carried, kinks located)",
             Method::Bdf => "diffsol bdf",
+            Method::BdfKinks => "diffsol bdf (restart at kink roots)",
             Method::TrBdf2 => "diffsol tr_bdf2",
             Method::Esdirk34 => "diffsol esdirk34",
         }
@@ -38,13 +45,14 @@ impl Method {
 
 pub fn run(case: &Case, method: Method, rtol: f64, atol: f64) -> Result<Run, String> {
     match method {
-        Method::Radau5Cold => radau(case, rtol, atol, false),
-        Method::Radau5Warm => radau(case, rtol, atol, true),
+        Method::Radau5Cold => radau(case, rtol, atol, false, false),
+        Method::Radau5Warm => radau(case, rtol, atol, true, false),
+        Method::Radau5Kinks => radau(case, rtol, atol, true, true),
         _ => diffsol_run(case, method, rtol, atol),
     }
 }
 
-fn radau(case: &Case, rtol: f64, atol: f64, warm: bool) -> Result<Run, String> {
+fn radau(case: &Case, rtol: f64, atol: f64, warm: bool, kinks: bool) -> Result<Run, String> {
     let n = case.y0.len();
     let mut solver = Radau5::new(rtol, atol, f64::INFINITY);
     solver.atol_scale[..n].copy_from_slice(&case.scale);
@@ -57,7 +65,13 @@ fn radau(case: &Case, rtol: f64, atol: f64, warm: bool) -> Result<Run, String> {
         if !warm {
             solver.h_next = 0.0;
         }
-        solver.integrate(case.ode.as_ref(), t, t1, &mut y[..n], &mut work)?;
+        match (&case.switching, kinks) {
+            (Some(sw), true) => {
+                solver.integrate_switched(sw.as_ref(), t, t1, &mut y[..n], &mut work)?
+            }
+            (None, true) => return Err("no kinks in this case".into()),
+            _ => solver.integrate(case.ode.as_ref(), t, t1, &mut y[..n], &mut work)?,
+        }
         states.push(y[..n].to_vec());
         t = t1;
     }
@@ -116,29 +130,50 @@ fn diffsol_run(case: &Case, method: Method, rtol: f64, atol: f64) -> Result<Run,
             *yi = (*yi - fi) / delta;
         }
     };
-    let mut problem = OdeBuilder::<M>::new()
+    let builder = OdeBuilder::<M>::new()
         .rtol(rtol)
         .atol(case.scale.iter().map(|s| atol * s).collect::<Vec<_>>())
         .rhs_implicit(rhs, jac)
         .init(
             |_p: &[f64], _t: f64, y: &mut [f64]| y.copy_from_slice(&start.borrow()),
             n,
-        )
-        .build()
-        .map_err(|e| e.to_string())?;
-    let mut t = case.t0;
+        );
     let mut states = Vec::with_capacity(case.grid.len());
-    for &t1 in &case.grid {
-        problem.t0 = t;
-        let y = match method {
-            Method::Bdf => advance(problem.bdf::<LS>(), t1)?,
-            Method::TrBdf2 => advance(problem.tr_bdf2::<LS>(), t1)?,
-            Method::Esdirk34 => advance(problem.esdirk34::<LS>(), t1)?,
-            _ => unreachable!("radau5 runs elsewhere"),
-        };
-        start.borrow_mut().copy_from_slice(&y);
-        states.push(y);
-        t = t1;
+    // The same restart loop for both problem types (with and without root functions).
+    macro_rules! restarts {
+        ($problem:expr) => {{
+            let mut problem = $problem.map_err(|e| e.to_string())?;
+            let mut t = case.t0;
+            for &t1 in &case.grid {
+                // Restart at every root found on the way to t1, as at a kink.
+                while t < t1 {
+                    problem.t0 = t;
+                    let (t_end, y) = match method {
+                        Method::Bdf | Method::BdfKinks => advance(problem.bdf::<LS>(), t1)?,
+                        Method::TrBdf2 => advance(problem.tr_bdf2::<LS>(), t1)?,
+                        Method::Esdirk34 => advance(problem.esdirk34::<LS>(), t1)?,
+                        _ => unreachable!("radau5 runs elsewhere"),
+                    };
+                    start.borrow_mut().copy_from_slice(&y);
+                    t = t_end;
+                }
+                states.push(start.borrow().clone());
+            }
+        }};
+    }
+    match (&case.switching, method) {
+        (Some(sw), Method::BdfKinks) => {
+            let mut probe = [0.0; MAX_SWITCHES];
+            let count = sw.switches(case.t0, &case.y0, &mut probe);
+            let roots = |x: &[f64], _p: &[f64], t: f64, y: &mut [f64]| {
+                let mut out = [0.0; MAX_SWITCHES];
+                sw.switches(t, x, &mut out);
+                y.copy_from_slice(&out[..count]);
+            };
+            restarts!(builder.root(roots, count).build())
+        }
+        (None, Method::BdfKinks) => return Err("no kinks in this case".into()),
+        _ => restarts!(builder.build()),
     }
     Ok(Run {
         states,
@@ -146,22 +181,30 @@ fn diffsol_run(case: &Case, method: Method, rtol: f64, atol: f64) -> Result<Run,
     })
 }
 
-/// Steps a fresh solver to t1 exactly and returns the state there.
+/// Steps a fresh solver to t1, or to the first root of its root functions found on the way (not
+/// one right at its start, where the last restart left it on a kink); returns where it stopped
+/// and the state there.
 fn advance<'a, Eqn, S>(
     solver: Result<S, diffsol::error::DiffsolError>,
     t1: f64,
-) -> Result<Vec<f64>, String>
+) -> Result<(f64, Vec<f64>), String>
 where
     Eqn: diffsol::OdeEquations<T = f64> + 'a,
     S: OdeSolverMethod<'a, Eqn>,
 {
     let mut solver = solver.map_err(|e| e.to_string())?;
+    let t0 = solver.state().t;
     solver.set_stop_time(t1).map_err(|e| e.to_string())?;
     loop {
         match solver.step().map_err(|e| e.to_string())? {
-            OdeSolverStopReason::TstopReached => break,
+            OdeSolverStopReason::TstopReached => {
+                return Ok((t1, solver.state().y.clone_as_vec()));
+            }
+            OdeSolverStopReason::RootFound(t_root, _) if t_root > t0 + 1e-9 * (t1 - t0) => {
+                let y = solver.interpolate(t_root).map_err(|e| e.to_string())?;
+                return Ok((t_root, y.clone_as_vec()));
+            }
             OdeSolverStopReason::InternalTimestep | OdeSolverStopReason::RootFound(..) => {}
         }
     }
-    Ok(solver.state().y.clone_as_vec())
 }
