@@ -227,15 +227,17 @@ fn main() {
         Method::Radau5Warm,
         Method::Radau5Kinks,
         Method::Radau5Cold,
+        Method::Radau5LooseAtol,
         Method::Bdf,
         Method::BdfKinks,
+        Method::BdfLooseAtol,
         Method::TrBdf2,
         Method::Esdirk34,
     ];
     for sliding in [true, false] {
         compare(
             &cases::transverse(1000.0, 150, sliding),
-            &[1e-4, 1e-6, 1e-8, 1e-10],
+            &[1e-4, 1e-6, 1e-8, 1e-10, 1e-11],
             1.0,
             &with_kinks,
         );

@@ -27,7 +27,14 @@ pub enum Method {
     Esdirk34,
     /// diffsol's bdf with the kinks as root functions, restarted at each root found.
     BdfKinks,
+    /// Our radau5 (h carried) and diffsol's bdf with absolute tolerances 100 times looser:
+    /// bdf stops on "step size too small" at tight rtol with atol = rtol times scene T's scales.
+    Radau5LooseAtol,
+    BdfLooseAtol,
 }
+
+/// The absolute-tolerance factor of the *LooseAtol methods.
+const LOOSE: f64 = 100.0;
 
 impl Method {
     pub fn name(self) -> &'static str {
@@ -37,6 +44,8 @@ impl Method {
             Method::Radau5Kinks => "radau5 (h carried, kinks located)",
             Method::Bdf => "diffsol bdf",
             Method::BdfKinks => "diffsol bdf (restart at kink roots)",
+            Method::Radau5LooseAtol => "radau5 (h carried, atol x100)",
+            Method::BdfLooseAtol => "diffsol bdf (atol x100)",
             Method::TrBdf2 => "diffsol tr_bdf2",
             Method::Esdirk34 => "diffsol esdirk34",
         }
@@ -48,6 +57,8 @@ pub fn run(case: &Case, method: Method, rtol: f64, atol: f64) -> Result<Run, Str
         Method::Radau5Cold => radau(case, rtol, atol, false, false),
         Method::Radau5Warm => radau(case, rtol, atol, true, false),
         Method::Radau5Kinks => radau(case, rtol, atol, true, true),
+        Method::Radau5LooseAtol => radau(case, rtol, atol * LOOSE, true, false),
+        Method::BdfLooseAtol => diffsol_run(case, Method::Bdf, rtol, atol * LOOSE),
         _ => diffsol_run(case, method, rtol, atol),
     }
 }
