@@ -74,7 +74,7 @@ def render(rows, grid, x, y, column, units=None, fixed=None, title=None):
     for n, panel in enumerate(panels):
         ox = (n % columns) * panel_w + LEFT
         oy = 30 + (n // columns) * panel_h + TOP
-        heading = ", ".join(f"{a} = {v:g}" if isinstance(v, float) else f"{a} = {v}"
+        heading = ", ".join(f"{a} = {_plain(v)} {units.get(a, '')}".strip()
                             for a, v in [*fixed.items(), *zip(facets, panel)])
         out.append(f'<text x="{ox + nx * CELL_W / 2}" y="{oy - 10}" text-anchor="middle">'
                    f'{escape(heading)}</text>')
@@ -109,8 +109,12 @@ def render(rows, grid, x, y, column, units=None, fixed=None, title=None):
     return "\n".join(out) + "\n"
 
 
+def _plain(value):
+    return f"{value:g}" if isinstance(value, float) else str(value)
+
+
 def _tick(value):
-    return f"{value:g}" if isinstance(value, float) else escape(str(value))
+    return escape(_plain(value))
 
 
 def _color_bar(x, y, h, low, high, text):

@@ -188,15 +188,17 @@ def collect(outputs, values, times, samples):
 
 def run_point(source, plan, point):
     """One row of the sweep: the point's values, its outputs (or its status and the FMU's
-    message), and the wall time of the run."""
-    began = clock.perf_counter()
+    message), and the wall time of the run (instantiate to free; a worker's one-time
+    extraction of the FMU is not in it)."""
     row = {"point": point.index, **point.values}
     values = {**plan.fixed, **point.values}
     environment = next(_ENVIRONMENTS)
     messages = _MESSAGES[environment] = []
     fmu = None
+    began = clock.perf_counter()
     try:
         lib = loaded(source)
+        began = clock.perf_counter()
         fmu = FMU2Slave(guid=lib.md.guid, unzipDirectory=lib.unzipdir,
                         modelIdentifier=lib.md.coSimulation.modelIdentifier,
                         instanceName=f"point{point.index}")
