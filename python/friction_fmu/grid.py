@@ -13,6 +13,8 @@ from dataclasses import dataclass, field
 def parse_value(text):
     """A grid or --set value: a float when it reads as one, else the text (an enumeration item
     name such as `sliding`, or a boolean `true`/`false`)."""
+    if isinstance(text, int) and not isinstance(text, bool):
+        return float(text)  # 3000 in a grid file is the same point as 3000.0 on the CLI
     if not isinstance(text, str):
         return text
     text = text.strip()

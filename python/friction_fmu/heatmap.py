@@ -65,7 +65,8 @@ def render(rows, grid, x, y, column, units=None, fixed=None, title=None):
     panel_w, panel_h = LEFT + nx * CELL_W + GAP, TOP + ny * CELL_H + BOTTOM
     columns = min(len(panels), 3)
     width = columns * panel_w + BAR_GAP + BAR_W + BAR_LABEL
-    height = 30 + math.ceil(len(panels) / columns) * panel_h
+    bar_h = max(ny * CELL_H, 120)  # tall enough for five readable ticks
+    height = max(30 + math.ceil(len(panels) / columns) * panel_h, 30 + TOP + bar_h + 20)
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
            f'font-family="sans-serif" font-size="11">',
            f'<rect width="{width}" height="{height}" fill="white"/>',
@@ -103,7 +104,7 @@ def render(rows, grid, x, y, column, units=None, fixed=None, title=None):
         ly = oy + ny * CELL_H / 2
         out.append(f'<text x="{ox - LEFT + 14}" y="{ly}" text-anchor="middle" '
                    f'transform="rotate(-90 {ox - LEFT + 14} {ly})">{escape(label(y, units))}</text>')
-    out.extend(_color_bar(columns * panel_w + BAR_GAP, 30 + TOP, ny * CELL_H, low, high,
+    out.extend(_color_bar(columns * panel_w + BAR_GAP, 30 + TOP, bar_h, low, high,
                           label(column, units)))
     out.append("</svg>")
     return "\n".join(out) + "\n"
