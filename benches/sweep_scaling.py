@@ -11,8 +11,10 @@ The grid is Fig. 8's (`python -m friction_fmu.sweep --preset fig8`: 6 vd x 6 va 
 points), each run `--periods` vibration periods long at the FMU's default tolerance 1e-10 (the
 preset's 1e-8 makes runs too short to time). A sweep's wall time counts everything the user
 waits for: starting the process pool (or connecting to the already running cluster), shipping
-the FMU, every point, collecting the rows. "work" is the sum of the points' own run times: the
-serial work, whatever the executor.
+the FMU, every point, collecting the rows. "run" is the sum of the points' own wall times and
+"CPU" the sum of their CPU times: the serial work, whatever the executor; when run exceeds CPU,
+the workers waited for a core (the machine was busy with other processes too); "cores used" is
+CPU / wall time. The setups take turns, repeat after repeat.
 """
 import argparse
 import os
@@ -28,14 +30,11 @@ from friction_fmu.presets import PRESETS  # noqa: E402
 from friction_fmu.sweep import run_sweep  # noqa: E402
 
 
-def timed(fmu, plan, repeats, **executor):
-    walls, works = [], []
-    for _ in range(repeats):
-        rows, summary = run_sweep(fmu, plan, progress=False, **executor)
-        assert summary["failed"] == 0, [r["message"] for r in rows if r["status"] != "ok"]
-        walls.append(summary["wall_time_s"])
-        works.append(sum(r["wall_time_s"] for r in rows))
-    return statistics.median(walls), statistics.median(works), len(rows)
+def once(fmu, plan, executor):
+    rows, summary = run_sweep(fmu, plan, progress=False, **executor)
+    assert summary["failed"] == 0, [r["message"] for r in rows if r["status"] != "ok"]
+    return (summary["wall_time_s"], sum(r["wall_time_s"] for r in rows),
+            sum(r["cpu_time_s"] for r in rows), len(rows))
 
 
 def main():
@@ -49,22 +48,32 @@ def main():
     plan.fixed.pop("tolerance")
     plan.stop_time = Span(args.periods, "f")
     fmu = preset["fmu"]
+    load = os.getloadavg()[0]
 
     from distributed import LocalCluster
 
-    results = [("local processes", 1, timed(fmu, plan, args.repeats, workers=1)),
-               ("local processes", 2, timed(fmu, plan, args.repeats, workers=2))]
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                       dashboard_address=None) as cluster:
-        results.append(("Dask LocalCluster", 2, timed(fmu, plan, args.repeats, scheduler=cluster)))
+        setups = [("local processes", 1, {"workers": 1}),
+                  ("local processes", 2, {"workers": 2}),
+                  ("Dask LocalCluster", 2, {"scheduler": cluster})]
+        # round-robin, so a change in the machine's other load falls on every setup alike
+        samples = {name_workers[:2]: [] for name_workers in setups}
+        for _ in range(args.repeats):
+            for name, workers, executor in setups:
+                samples[name, workers].append(once(fmu, plan, executor))
 
-    base = results[0][2][0]
-    print(f"\n{os.cpu_count()} cores, load average {os.getloadavg()[0]:.2f}; "
+    medians = {k: [statistics.median(x) for x in zip(*v)] for k, v in samples.items()}
+    base = medians["local processes", 1][0]
+    print(f"\n{os.cpu_count()} cores, load average {load:.2f} before, "
+          f"{os.getloadavg()[0]:.2f} after; "
           f"grid of Fig. 8, {args.periods:g} periods per point; median of {args.repeats}\n")
-    print("| points | executor | workers | wall time (s) | work (s) | speed-up |")
-    print("|---:|---|---:|---:|---:|---:|")
-    for name, workers, (wall, work, points) in results:
-        print(f"| {points} | {name} | {workers} | {wall:.2f} | {work:.2f} | {base / wall:.2f}x |")
+    print("| points | executor | workers | wall time (s) | run (s) | CPU (s) | cores used "
+          "| speed-up |")
+    print("|---:|---|---:|---:|---:|---:|---:|---:|")
+    for (name, workers), (wall, run, cpu, points) in medians.items():
+        print(f"| {points:.0f} | {name} | {workers} | {wall:.2f} | {run:.2f} | {cpu:.2f} "
+              f"| {cpu / wall:.2f} | {base / wall:.2f}x |")
 
 
 if __name__ == "__main__":

@@ -85,7 +85,8 @@ def render(rows, grid, x, y, column, units=None, fixed=None, title=None):
                 value = _value(row, column)
                 cx, cy = ox + i * CELL_W, oy + (ny - 1 - j) * CELL_H  # y grows upward
                 fill = "#cccccc" if value is None else color((value - low) / span)
-                tip = f"{row.get('status')}: {row.get('message')}" if value is None else f"{value:.6g}"
+                tip = (f"{row.get('status')}: {row.get('message')}" if value is None
+                       else f"{value:.6g}")
                 out.append(f'<rect class="cell" x="{cx}" y="{cy}" width="{CELL_W}" '
                            f'height="{CELL_H}" fill="{fill}" stroke="white">'
                            f'<title>{escape(f"{x}={xv}, {y}={yv}: {tip}")}</title></rect>')
@@ -102,8 +103,9 @@ def render(rows, grid, x, y, column, units=None, fixed=None, title=None):
         out.append(f'<text x="{ox + nx * CELL_W / 2}" y="{oy + ny * CELL_H + 36}" '
                    f'text-anchor="middle">{escape(label(x, units))}</text>')
         ly = oy + ny * CELL_H / 2
-        out.append(f'<text x="{ox - LEFT + 14}" y="{ly}" text-anchor="middle" '
-                   f'transform="rotate(-90 {ox - LEFT + 14} {ly})">{escape(label(y, units))}</text>')
+        lx = ox - LEFT + 14
+        out.append(f'<text x="{lx}" y="{ly}" text-anchor="middle" '
+                   f'transform="rotate(-90 {lx} {ly})">{escape(label(y, units))}</text>')
     out.extend(_color_bar(columns * panel_w + BAR_GAP, 30 + TOP, bar_h, low, high,
                           label(column, units)))
     out.append("</svg>")
@@ -121,13 +123,16 @@ def _tick(value):
 def _color_bar(x, y, h, low, high, text):
     out = ['<defs><linearGradient id="bar" x1="0" y1="1" x2="0" y2="0">']
     for k in range(len(STOPS)):
-        out.append(f'<stop offset="{k / (len(STOPS) - 1)}" stop-color="{color(k / (len(STOPS) - 1))}"/>')
+        at = k / (len(STOPS) - 1)
+        out.append(f'<stop offset="{at}" stop-color="{color(at)}"/>')
     out.append("</linearGradient></defs>")
-    out.append(f'<rect x="{x}" y="{y}" width="{BAR_W}" height="{h}" fill="url(#bar)" stroke="black"/>')
+    out.append(f'<rect x="{x}" y="{y}" width="{BAR_W}" height="{h}" fill="url(#bar)" '
+               'stroke="black"/>')
     for k in range(5):
         v = low + (high - low) * k / 4
         ty = y + h - h * k / 4
-        out.append(f'<line x1="{x + BAR_W}" y1="{ty}" x2="{x + BAR_W + 4}" y2="{ty}" stroke="black"/>')
+        out.append(f'<line x1="{x + BAR_W}" y1="{ty}" x2="{x + BAR_W + 4}" y2="{ty}" '
+                   'stroke="black"/>')
         out.append(f'<text x="{x + BAR_W + 6}" y="{ty + 4}">{v:.4g}</text>')
     lx, ly = x + BAR_W + 66, y + h / 2  # the bar's title, written upward beside its ticks
     out.append(f'<text x="{lx}" y="{ly}" text-anchor="middle" '

@@ -1,4 +1,5 @@
 """A one-line progress bar on stderr: finished/total, failures, elapsed time and ETA."""
+import math
 import sys
 import time
 
@@ -39,7 +40,7 @@ class Progress:
 
 
 def _clock(seconds):
-    if seconds != seconds:  # NaN: no estimate before the first point finishes
+    if math.isnan(seconds):  # no estimate before the first point finishes
         return "--:--"
-    minutes, secs = divmod(int(round(seconds)), 60)
+    minutes, secs = divmod(round(seconds), 60)
     return f"{minutes:02d}:{secs:02d}"

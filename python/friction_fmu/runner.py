@@ -188,17 +188,17 @@ def collect(outputs, values, times, samples):
 
 def run_point(source, plan, point):
     """One row of the sweep: the point's values, its outputs (or its status and the FMU's
-    message), and the wall time of the run (instantiate to free; a worker's one-time
-    extraction of the FMU is not in it)."""
+    message), and the wall and CPU time of the run (instantiate to free; a worker's one-time
+    extraction of the FMU is not in them)."""
     row = {"point": point.index, **point.values}
     values = {**plan.fixed, **point.values}
     environment = next(_ENVIRONMENTS)
     messages = _MESSAGES[environment] = []
     fmu = None
-    began = clock.perf_counter()
+    began, cpu = clock.perf_counter(), clock.process_time()
     try:
         lib = loaded(source)
-        began = clock.perf_counter()
+        began, cpu = clock.perf_counter(), clock.process_time()
         fmu = FMU2Slave(guid=lib.md.guid, unzipDirectory=lib.unzipdir,
                         modelIdentifier=lib.md.coSimulation.modelIdentifier,
                         instanceName=f"point{point.index}")
@@ -216,6 +216,7 @@ def run_point(source, plan, point):
             fmu.freeInstance()
         del _MESSAGES[environment]
     row["wall_time_s"] = clock.perf_counter() - began
+    row["cpu_time_s"] = clock.process_time() - cpu  # this process runs one point at a time
     return row
 
 

@@ -164,6 +164,8 @@ def plan_from_args(args):
         plan.grid[name] = values
     for text in args.set:
         name, values = parse_assignment(text)
+        if len(values) != 1:
+            raise SystemExit(f"--set {text}: one value expected (a list is a --grid axis)")
         plan.fixed[name] = values[0]
     if args.output:
         plan.outputs = [Output.parse(o) for o in args.output]
