@@ -11,12 +11,18 @@ import pathlib
 from .grid import load_file
 
 HERE = pathlib.Path(__file__).resolve().parent
-ROOT = HERE.parents[1]
+
+
+def built(model):
+    """The FMU `friction-fmu build` packed: under ./fmu-out, else in this checkout's fmu-out."""
+    here = pathlib.Path("fmu-out") / f"{model}.fmu"
+    return str(here if here.exists() else HERE.parents[1] / here)
+
 
 PRESETS = {
     "fig8": {
         "plan": lambda: load_file(HERE / "fig8.toml"),
-        "fmu": str(ROOT / "fmu-out" / "TransverseFriction.fmu"),
+        "fmu": built("TransverseFriction"),
         "out": "fmu-out/sweeps/fig8",
         "heatmap": {"x": "va", "y": "vd", "color": "FFx_mean:mean_last=30/f"},
         "title": "TransverseFriction: steady mean FFx over the last 30 periods (Fig. 8)",

@@ -113,3 +113,20 @@ def test_heat_map_has_one_cell_per_point(local):
                          "va", "vd", "FFx_mean", units)
     cells = [r for r in ET.fromstring(two).iter(f"{ns}rect") if r.get("class") == "cell"]
     assert len(cells) == 2 * 3 * 2
+
+
+def test_fig8_grid_file_and_times_per_point():
+    from friction_fmu.grid import load_file, parse_assignment
+    from friction_fmu.presets import PRESETS
+
+    fig8 = load_file(ROOT / "python" / "friction_fmu" / "fig8.toml")
+    assert fig8 == PRESETS["fig8"]["plan"]()
+    points = fig8.points()
+    assert len(points) == 6 * 6 * 2
+    assert points[1].values == {"vd": 1e-4, "va": 3e-4, "f": 2000.0}  # last axis fastest
+    # 150 periods at 3 kHz, averaged over the last 30
+    assert fig8.stop_time.at({"f": 3000.0}) == pytest.approx(0.05, rel=1e-15)
+    assert fig8.outputs[1].window.at({"f": 3000.0}) == pytest.approx(0.01, rel=1e-15)
+    assert fig8.outputs[1].column == "FFx_mean:mean_last=30/f"
+    assert parse_assignment("vd=0.1e-3, 5e-4,1e-3") == ("vd", [1e-4, 5e-4, 1e-3])
+    assert parse_assignment("initial=sliding") == ("initial", ["sliding"])
