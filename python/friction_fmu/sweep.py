@@ -56,6 +56,7 @@ def run_sweep(fmu, plan, scheduler=None, workers=None, ship=None, progress=True)
     `ship` is how the FMU reaches the workers: "path" (a filesystem they share with this
     process; the default on local cores) or "bytes" (the .fmu's content; the default on Dask,
     safe on any cluster)."""
+    check_names(fmu, plan)
     ship = ship or ("bytes" if scheduler is not None else "path")
     source = FmuSource.by_bytes(fmu) if ship == "bytes" else FmuSource.by_path(fmu)
     points = plan.points()
@@ -84,6 +85,15 @@ def run_sweep(fmu, plan, scheduler=None, workers=None, ship=None, progress=True)
         "wall_time_s": time.perf_counter() - began,
     }
     return rows, summary
+
+
+def check_names(fmu, plan):
+    """A misspelt name would fail every point the same way: refuse the sweep up front."""
+    known = {v.name for v in fmpy.read_model_description(fmu).modelVariables}
+    names = [*plan.grid, *plan.fixed, *(o.variable for o in plan.outputs)]
+    unknown = [n for n in names if n not in known]
+    if unknown:
+        raise ValueError(f"{fmu} has no variable {', '.join(map(repr, unknown))}")
 
 
 def columns(plan):
@@ -194,8 +204,11 @@ def main(argv=None):
     prefix = pathlib.Path(args.out or preset.get("out", "fmu-out/sweeps/sweep"))
     prefix.parent.mkdir(parents=True, exist_ok=True)
 
-    rows, summary = run_sweep(fmu, plan, scheduler=args.scheduler, workers=args.workers,
-                              ship=args.ship, progress=not args.quiet)
+    try:
+        rows, summary = run_sweep(fmu, plan, scheduler=args.scheduler, workers=args.workers,
+                                  ship=args.ship, progress=not args.quiet)
+    except ValueError as error:
+        raise SystemExit(str(error)) from None
     write_csv(prefix.with_suffix(".csv"), plan, rows)
     svg = heatmap.render(rows, plan.grid, x, y, column, heatmap_units(fmu, plan), fixed,
                          title=preset.get("title"))

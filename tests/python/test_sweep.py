@@ -70,6 +70,19 @@ def test_refused_point_is_recorded_and_the_others_run(local):
     assert all(math.isfinite(r["FFx_mean"]) for r in local if r["status"] == "ok")
 
 
+def test_discarded_step_is_recorded_with_its_time():
+    # rk4 at 50 steps a period does not hold a contact 1000 x stiffer than the paper's (the
+    # stiffness table of the README): that point alone is discarded, the paper's kt runs.
+    stiff = Plan(grid={"kt": [62.86e6, 62.86e9]},
+                 fixed={"solver": "rk4", "steps_per_period": 50, "f": F},
+                 outputs=[Output("FFx_mean")], stop_time=Span(STOP), step=Span(1.0, "f"))
+    rows = run_sweep(fmu_path(MODEL), stiff, workers=1, progress=False)[0]
+    assert [r["status"] for r in rows] == ["ok", "discard"]
+    assert "fmi2DoStep: the step from t = 0 " in rows[1]["message"]
+    assert "rk4: the state became non-finite" in rows[1]["message"]
+    assert 0.1 < rows[0]["FFx_mean"] < 1.2
+
+
 def _rows_without_wall_time(path):
     with open(path) as handle:
         rows = list(csv.DictReader(handle))
