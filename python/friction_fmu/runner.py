@@ -1,0 +1,226 @@
+"""The task every worker runs: one grid point, one simulation through fmpy's FMU2Slave.
+
+The FMU travels as an `FmuSource`: by path (the worker reads the file itself, which needs a
+filesystem shared with the client) or as the bytes of the .fmu (works anywhere). A worker
+extracts each FMU once, keeps its shared library loaded, and instantiates it once per point.
+A refusal by the FMU (error, discard, fatal) becomes the row's status and message: a failed
+point never raises out of `run_point`.
+"""
+import atexit
+import ctypes
+import hashlib
+import itertools
+import math
+import os
+import pathlib
+import shutil
+import tempfile
+import threading
+import time as clock
+from dataclasses import dataclass
+
+import fmpy
+from fmpy.fmi2 import FMU2Slave
+
+STATUS = ["ok", "warning", "discard", "error", "fatal", "pending"]
+
+
+@dataclass(frozen=True)
+class FmuSource:
+    """An FMU as a path or as bytes, named by the digest of its content."""
+
+    digest: str
+    path: str | None = None
+    data: bytes | None = None
+
+    @staticmethod
+    def by_path(path):
+        path = os.path.abspath(path)
+        return FmuSource(_digest(pathlib.Path(path).read_bytes()), path=path)
+
+    @staticmethod
+    def by_bytes(path):
+        data = pathlib.Path(path).read_bytes()
+        return FmuSource(_digest(data), data=data)
+
+
+def _digest(data):
+    return hashlib.sha256(data).hexdigest()[:16]
+
+
+class _Loaded:
+    """An extracted FMU in this process: directory, model description, variables by name."""
+
+    def __init__(self, source):
+        self.directory = tempfile.mkdtemp(prefix=f"friction_fmu_{source.digest}_")
+        atexit.register(shutil.rmtree, self.directory, True)
+        if source.data is not None:
+            archive = os.path.join(self.directory, "model.fmu")
+            pathlib.Path(archive).write_bytes(source.data)
+        else:
+            archive = source.path
+        self.unzipdir = fmpy.extract(archive, unzipdir=os.path.join(self.directory, "x"))
+        self.md = fmpy.read_model_description(self.unzipdir)
+        self.variables = {v.name: v for v in self.md.modelVariables}
+        identifier = self.md.coSimulation.modelIdentifier
+        # FMU2Slave.freeInstance unloads the library; this handle keeps it resident between
+        # points so it is not reloaded for each one.
+        self._anchor = ctypes.CDLL(os.path.join(
+            self.unzipdir, "binaries", fmpy.platform, identifier + fmpy.sharedLibraryExtension))
+
+
+_CACHE = {}
+_CACHE_LOCK = threading.Lock()
+
+
+def loaded(source):
+    with _CACHE_LOCK:
+        if source.digest not in _CACHE:
+            _CACHE[source.digest] = _Loaded(source)
+        return _CACHE[source.digest]
+
+
+# fmpy's C logger proxy holds ONE Python logger for the whole process, so there is one, never
+# freed, which hands each message to the instance it belongs to by its environment pointer.
+_MESSAGES = {}
+_ENVIRONMENTS = itertools.count(1)
+
+
+def _log(environment, instance_name, status, category, message):
+    messages = _MESSAGES.get(environment or 0)
+    if messages is not None:
+        messages.append((status, message.decode("utf-8", errors="replace")))
+
+
+_LOGGER = None
+
+
+def _callbacks(environment):
+    global _LOGGER
+    from fmpy import calloc, free
+    from fmpy.fmi2 import (
+        fmi2CallbackAllocateMemoryTYPE,
+        fmi2CallbackFreeMemoryTYPE,
+        fmi2CallbackFunctions,
+        fmi2CallbackLoggerTYPE,
+    )
+    from fmpy.logging import addLoggerProxy
+
+    if _LOGGER is None:
+        _LOGGER = fmi2CallbackLoggerTYPE(_log)
+    callbacks = fmi2CallbackFunctions()
+    callbacks.logger = _LOGGER
+    callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+    callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+    callbacks.componentEnvironment = ctypes.c_void_p(environment)
+    addLoggerProxy(ctypes.byref(callbacks))
+    return callbacks
+
+
+def _set(fmu, fmu_vars, name, value):
+    var = fmu_vars.get(name)
+    if var is None:
+        raise ValueError(f"{name!r} is not a variable of this FMU")
+    vr = [var.valueReference]
+    if var.type == "Real":
+        fmu.setReal(vr, [float(value)])
+    elif var.type == "Boolean":
+        fmu.setBoolean(vr, [str(value).lower() in ("1", "1.0", "true")])
+    elif var.type in ("Integer", "Enumeration"):
+        if isinstance(value, str):
+            items = {i.name: int(i.value) for i in var.declaredType.items}
+            if value not in items:
+                raise ValueError(f"{name} = {value!r}: expected one of {sorted(items)}")
+            value = items[value]
+        fmu.setInteger(vr, [int(value)])
+    else:
+        raise ValueError(f"{name}: variables of type {var.type} cannot be set by a sweep")
+
+
+def experiment_times(md, plan, values):
+    """(start, stop, step) of one point: the plan's, else the FMU's DefaultExperiment."""
+    experiment = md.defaultExperiment
+    stop = plan.stop_time.at(values) if plan.stop_time else float(experiment.stopTime)
+    step = plan.step.at(values) if plan.step else float(experiment.stepSize)
+    return plan.start_time, stop, step
+
+
+def _simulate(fmu, lib, plan, values, outputs):
+    """Steps from start to stop like fmpy.simulate_fmu does (communication points
+    start + n*step, the last one clipped to stop); returns times and sampled outputs."""
+    start, stop, step = experiment_times(lib.md, plan, values)
+    refs = [lib.variables[o.variable].valueReference for o in outputs]
+    fmu.setupExperiment(startTime=start, stopTime=stop)
+    for name, value in values.items():
+        _set(fmu, lib.variables, name, value)
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    times, samples = [start], [fmu.getReal(refs)]
+    t, n = start, 0
+    while not (t > stop or _isclose(t, stop)):
+        target = start + (n + 1) * step
+        if target > stop and not _isclose(target, stop):
+            target = stop
+        fmu.doStep(currentCommunicationPoint=t, communicationStepSize=target - t)
+        t, n = target, n + 1
+        times.append(t)
+        samples.append(fmu.getReal(refs))
+    return times, samples
+
+
+def _isclose(a, b):
+    return math.isclose(a, b)  # the comparison fmpy.simulate_fmu makes of communication points
+
+
+def collect(outputs, values, times, samples):
+    """One number per output: the last sample, or the mean of the samples in the window."""
+    stop = times[-1]
+    result = {}
+    for k, output in enumerate(outputs):
+        if output.window is None:
+            result[output.column] = samples[-1][k]
+            continue
+        since = stop - output.window.at(values)
+        chosen = [s[k] for t, s in zip(times, samples) if t > since and not _isclose(t, since)]
+        result[output.column] = sum(chosen) / len(chosen) if chosen else float("nan")
+    return result
+
+
+def run_point(source, plan, point):
+    """One row of the sweep: the point's values, its outputs (or its status and the FMU's
+    message), and the wall and CPU time of the run (instantiate to free; a worker's one-time
+    extraction of the FMU is not in them)."""
+    row = {"point": point.index, **point.values}
+    values = {**plan.fixed, **point.values}
+    environment = next(_ENVIRONMENTS)
+    messages = _MESSAGES[environment] = []
+    fmu = None
+    began, cpu = clock.perf_counter(), clock.process_time()
+    try:
+        lib = loaded(source)
+        began, cpu = clock.perf_counter(), clock.process_time()
+        fmu = FMU2Slave(guid=lib.md.guid, unzipDirectory=lib.unzipdir,
+                        modelIdentifier=lib.md.coSimulation.modelIdentifier,
+                        instanceName=f"point{point.index}")
+        fmu.instantiate(callbacks=_callbacks(environment))
+        times, samples = _simulate(fmu, lib, plan, values, plan.outputs)
+        row.update(collect(plan.outputs, values, times, samples))
+        row["status"], row["message"] = "ok", ""
+    except fmpy.fmi1.FMICallException as error:
+        row["status"] = STATUS[error.status] if 0 <= error.status < len(STATUS) else "error"
+        row["message"] = _explain(messages, error)
+    except Exception as error:  # a bad plan (unknown variable, item) fails the point only
+        row["status"], row["message"] = "error", _explain(messages, error)
+    finally:
+        if fmu is not None and getattr(fmu, "component", None) is not None:
+            fmu.freeInstance()
+        del _MESSAGES[environment]
+    row["wall_time_s"] = clock.perf_counter() - began
+    row["cpu_time_s"] = clock.process_time() - cpu  # this process runs one point at a time
+    return row
+
+
+def _explain(messages, error):
+    """The FMU's own words (its warnings and errors) when it gave any, else the exception."""
+    said = [text for status, text in messages if status >= 1]
+    return " | ".join(said) if said else str(error)

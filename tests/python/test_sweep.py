@@ -1,0 +1,145 @@
+"""Parameter sweeps (python/friction_fmu): each row equals a direct fmpy run of its point, the
+local process pool and a Dask cluster write the same CSV, a refused point is recorded with the
+FMU's message, and the heat map has one cell per point.
+
+Runs are short (30 periods at 3 kHz) and grids tiny, so the file takes a few seconds, most of
+it starting the Dask cluster.
+"""
+import csv
+import math
+import sys
+import xml.etree.ElementTree as ET
+
+import fmpy
+import pytest
+
+from conftest import ROOT, enum_value, fmu_path
+
+sys.path.insert(0, str(ROOT / "python"))
+from friction_fmu import heatmap  # noqa: E402
+from friction_fmu.grid import Output, Plan, Span  # noqa: E402
+from friction_fmu.sweep import run_sweep, write_csv  # noqa: E402
+
+MODEL = "TransverseFriction"
+F = 3000.0
+STOP = 0.01
+MEAN_LAST = Output("FFx", Span(1.0, "f"))  # mean of FFx's samples over the last period
+
+
+def plan():
+    # va = -1 mm/s is below the declared minimum 0: the FMU must refuse that point alone.
+    return Plan(
+        grid={"vd": [5e-4, 2e-3], "va": [-1e-3, 1e-3, 2e-3]},
+        fixed={"f": F, "initial": "sliding"},
+        outputs=[Output("FFx_mean"), Output("Fd"), MEAN_LAST],
+        stop_time=Span(STOP),
+        step=Span(0.1, "f"),
+    )
+
+
+@pytest.fixture(scope="module")
+def local():
+    return run_sweep(fmu_path(MODEL), plan(), workers=2, progress=False)[0]
+
+
+def test_each_row_equals_a_direct_fmpy_run(local):
+    ok = [r for r in local if r["status"] == "ok"]
+    assert len(ok) == 4
+    for row in ok:
+        result = fmpy.simulate_fmu(
+            fmu_path(MODEL),
+            start_values={"vd": row["vd"], "va": row["va"], "f": F,
+                          "initial": enum_value(MODEL, "initial", "sliding")},
+            stop_time=STOP, output_interval=0.1 / F, output=["FFx_mean", "Fd", "FFx"])
+        assert row["FFx_mean"] == result["FFx_mean"][-1]
+        assert row["Fd"] == result["Fd"][-1]
+        last = result["time"] > STOP - 1.0 / F + 1e-12
+        assert last.sum() == 10
+        assert row[MEAN_LAST.column] == pytest.approx(result["FFx"][last].mean(), rel=1e-14)
+        # and the run did something: the drive force is near the friction level
+        assert 0.1 < row["FFx_mean"] < 1.2
+
+
+def test_refused_point_is_recorded_and_the_others_run(local):
+    failed = [r for r in local if r["status"] != "ok"]
+    assert [(r["vd"], r["va"]) for r in failed] == [(5e-4, -1e-3), (2e-3, -1e-3)]
+    for row in failed:
+        assert row["status"] == "error"
+        assert "va = -0.001 is out of range: expected va >= 0" in row["message"]
+        assert "FFx_mean" not in row
+    assert all(math.isfinite(r["FFx_mean"]) for r in local if r["status"] == "ok")
+
+
+def test_discarded_step_is_recorded_with_its_time():
+    # rk4 at 50 steps a period does not hold a contact 1000 x stiffer than the paper's (the
+    # stiffness table of the README): that point alone is discarded, the paper's kt runs.
+    stiff = Plan(grid={"kt": [62.86e6, 62.86e9]},
+                 fixed={"solver": "rk4", "steps_per_period": 50, "f": F},
+                 outputs=[Output("FFx_mean")], stop_time=Span(STOP), step=Span(1.0, "f"))
+    rows = run_sweep(fmu_path(MODEL), stiff, workers=1, progress=False)[0]
+    assert [r["status"] for r in rows] == ["ok", "discard"]
+    assert "fmi2DoStep: the step from t = 0 " in rows[1]["message"]
+    assert "rk4: the state became non-finite" in rows[1]["message"]
+    assert 0.1 < rows[0]["FFx_mean"] < 1.2
+
+
+def _rows_without_wall_time(path):
+    with open(path) as handle:
+        rows = list(csv.DictReader(handle))
+    for row in rows:
+        assert float(row.pop("wall_time_s")) >= 0.0
+    return sorted(rows, key=lambda r: int(r["point"]))
+
+
+def test_local_processes_and_dask_cluster_write_the_same_csv(local, tmp_path):
+    import distributed  # in tests/python/requirements.txt: missing is a failure, not a skip
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        on_dask, summary = run_sweep(fmu_path(MODEL), plan(), scheduler=cluster, progress=False)
+    assert summary["ship"] == "bytes"
+    write_csv(tmp_path / "local.csv", plan(), local)
+    write_csv(tmp_path / "dask.csv", plan(), on_dask)
+    a = _rows_without_wall_time(tmp_path / "local.csv")
+    b = _rows_without_wall_time(tmp_path / "dask.csv")
+    assert len(a) == 6
+    assert a == b
+
+
+def test_heat_map_has_one_cell_per_point(local):
+    grid = {**plan().grid, "f": [F]}
+    rows = [{**r, "f": F} for r in local]
+    units = {"vd": "m/s", "va": "m/s", "FFx_mean": "N"}
+    svg = heatmap.render(rows, grid, "va", "vd", "FFx_mean", units)
+    root = ET.fromstring(svg)
+    ns = "{http://www.w3.org/2000/svg}"
+    cells = [r for r in root.iter(f"{ns}rect") if r.get("class") == "cell"]
+    assert len(cells) == 3 * 2
+    gray = [c for c in cells if c.get("fill") == "#cccccc"]
+    assert len(gray) == 2
+    texts = [t.text for t in root.iter(f"{ns}text")]
+    assert "va (m/s)" in texts and "vd (m/s)" in texts and "FFx_mean (N)" in texts
+    # the color bar spans exactly the successful points' values
+    values = sorted(r["FFx_mean"] for r in local if r["status"] == "ok")
+    assert f"{values[0]:.4g}" in texts and f"{values[-1]:.4g}" in texts
+    # one panel per value of a faceted third axis
+    two = heatmap.render(rows + [{**r, "f": 2.0} for r in rows], {**grid, "f": [F, 2.0]},
+                         "va", "vd", "FFx_mean", units)
+    cells = [r for r in ET.fromstring(two).iter(f"{ns}rect") if r.get("class") == "cell"]
+    assert len(cells) == 2 * 3 * 2
+
+
+def test_fig8_grid_file_and_times_per_point():
+    from friction_fmu.grid import load_file, parse_assignment
+    from friction_fmu.presets import PRESETS
+
+    fig8 = load_file(ROOT / "python" / "friction_fmu" / "fig8.toml")
+    assert fig8 == PRESETS["fig8"]["plan"]()
+    points = fig8.points()
+    assert len(points) == 6 * 6 * 2
+    assert points[1].values == {"vd": 1e-4, "va": 3e-4, "f": 2000.0}  # last axis fastest
+    # 150 periods at 3 kHz, averaged over the last 30
+    assert fig8.stop_time.at({"f": 3000.0}) == pytest.approx(0.05, rel=1e-15)
+    assert fig8.outputs[1].window.at({"f": 3000.0}) == pytest.approx(0.01, rel=1e-15)
+    assert fig8.outputs[1].column == "FFx_mean:mean_last=30/f"
+    assert parse_assignment("vd=0.1e-3, 5e-4,1e-3") == ("vd", [1e-4, 5e-4, 1e-3])
+    assert parse_assignment("initial=sliding") == ("initial", ["sliding"])
