@@ -146,7 +146,25 @@ impl Ode for Equations<'_> {
 impl Switching for Equations<'_> {
     #[inline]
     fn switches(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
+        self.switches_of(&self.p.contact(t, y), out)
+    }
+
+    /// The bristle relaxes at the slip rate: z' = w - slip z.
+    #[inline]
+    fn switches_and_decay(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> (usize, f64) {
         let c = self.p.contact(t, y);
+        let slip = self.p.law.slip(self.p.slip, c.v1, c.v2);
+        (self.switches_of(&c, out), slip)
+    }
+
+    fn decaying(&self) -> std::ops::Range<usize> {
+        ZX..ZY + 1
+    }
+}
+
+impl Equations<'_> {
+    #[inline]
+    fn switches_of(&self, c: &Contact, out: &mut [f64; MAX_SWITCHES]) -> usize {
         let vr = c.v1 + c.v2;
         let band = BAND * self.p.law.vs;
         out[0] = vr - band;
