@@ -127,11 +127,9 @@ impl LuGre2d {
         v_body: Vector2<f64>,
         v_m: Vector2<f64>,
     ) -> Contact {
-        let w = v_body - v_m;
         let s = z.norm();
-        let e = direction(z, w);
-        let v1 = e.dot(&v_body);
-        let v2 = -e.dot(&v_m);
+        let (e, v1, v2) = radial_rates(z, v_body, v_m);
+        let w = v_body - v_m;
         let zdot = w - self.slip(law, v1, v2) * z;
         let ff = self.force(s, e.dot(&zdot), v1 + v2);
         Contact {
@@ -143,6 +141,18 @@ impl LuGre2d {
             ff,
         }
     }
+}
+
+/// The bristle's direction e and the radial rates v1 = e . v_body and v2 = -e . v_M: all a
+/// switching function or the slip rate needs, without the force.
+#[inline]
+pub fn radial_rates(
+    z: Vector2<f64>,
+    v_body: Vector2<f64>,
+    v_m: Vector2<f64>,
+) -> (Vector2<f64>, f64, f64) {
+    let e = direction(z, v_body - v_m);
+    (e, e.dot(&v_body), -e.dot(&v_m))
 }
 
 /// The unit vector of `z`; for `z = 0` the one the bristle is about to take, along the relative

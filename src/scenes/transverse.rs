@@ -22,7 +22,7 @@ use super::period_mean::PeriodMean;
 use super::{
     require_finite, require_non_negative, require_passive, require_positive, Scene, Scope,
 };
-use crate::friction::lugre2d::{Contact, LuGre2d, SlipLaw};
+use crate::friction::lugre2d::{radial_rates, Contact, LuGre2d, SlipLaw};
 use crate::interface::transverse::vr;
 use crate::interface::values::ValueSet;
 use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
@@ -78,18 +78,33 @@ impl Params {
     }
 
     #[inline]
-    pub fn contact(&self, t: f64, y: &[f64]) -> Contact {
-        let v_body = if self.held {
+    fn body_velocity(&self, y: &[f64]) -> Vector2<f64> {
+        if self.held {
             Vector2::zeros()
         } else {
             Vector2::new(y[VX], y[VY])
-        };
+        }
+    }
+
+    #[inline]
+    pub fn contact(&self, t: f64, y: &[f64]) -> Contact {
         self.law.contact(
             self.slip,
             Vector2::new(y[ZX], y[ZY]),
-            v_body,
+            self.body_velocity(y),
             self.support_velocity(t),
         )
+    }
+
+    /// The radial rates (v1, v2) alone, for the switching functions.
+    #[inline]
+    fn radial_rates(&self, t: f64, y: &[f64]) -> (f64, f64) {
+        let (_, v1, v2) = radial_rates(
+            Vector2::new(y[ZX], y[ZY]),
+            self.body_velocity(y),
+            self.support_velocity(t),
+        );
+        (v1, v2)
     }
 
     pub fn drive_force(&self, y: &[f64], vd: f64) -> f64 {
@@ -152,16 +167,35 @@ impl Ode for Equations<'_> {
 impl Switching for Equations<'_> {
     #[inline]
     fn switches(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
-        let c = self.p.contact(t, y);
-        let vr = c.v1 + c.v2;
+        let (v1, v2) = self.p.radial_rates(t, y);
+        self.switches_of(v1, v2, out)
+    }
+
+    /// The bristle relaxes at the slip rate: z' = w - slip z.
+    #[inline]
+    fn switches_and_decay(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> (usize, f64) {
+        let (v1, v2) = self.p.radial_rates(t, y);
+        let slip = self.p.law.slip(self.p.slip, v1, v2);
+        (self.switches_of(v1, v2, out), slip)
+    }
+
+    fn decaying(&self) -> &[usize] {
+        &[ZX, ZY]
+    }
+}
+
+impl Equations<'_> {
+    #[inline]
+    fn switches_of(&self, v1: f64, v2: f64, out: &mut [f64; MAX_SWITCHES]) -> usize {
+        let vr = v1 + v2;
         let band = BAND * self.p.law.vs;
         out[0] = vr - band;
         out[1] = vr + band;
         match self.p.slip {
             // |v1| and |v2| have kinks.
             SlipLaw::Split => {
-                out[2] = c.v1;
-                out[3] = c.v2;
+                out[2] = v1;
+                out[3] = v2;
                 4
             }
             SlipLaw::Total => {

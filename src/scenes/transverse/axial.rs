@@ -67,4 +67,15 @@ impl Switching for Axial<'_> {
         out[2] = v;
         3
     }
+
+    /// z_x relaxes at the slip rate |x'|/g(x'), taken exactly within each dopri5 step as in the
+    /// plane.
+    fn switches_and_decay(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> (usize, f64) {
+        let n = self.switches(t, y, out);
+        (n, self.p.law.slip_rate(self.velocity(y)))
+    }
+
+    fn decaying(&self) -> &[usize] {
+        &[ZX]
+    }
 }
