@@ -6,8 +6,11 @@
 //! order over the step that contains it; ending the step on the kink restores the full order.
 //!
 //! Components that relax at a known rate (a bristle slipping back, y' = ... - sigma y) can be
-//! integrated with Lawson's integrating factor: the steps take u = e^(sigma tau) y, sigma frozen
-//! at the step's start, so the decay no longer sets the step, only how sigma and the rest vary.
+//! integrated with Lawson's integrating factor: the steps take u = e^(sigma tau) (y - c), sigma
+//! frozen at the step's start and c the state the frozen decay leads to, so the decay no longer
+//! sets the step, only how sigma and the rest vary, and a steady slip stays exact (the plain
+//! u = e^(sigma tau) y would turn it into a growing exponential: six times the steps, and a
+//! 1e-6 error, on scene T's steady sliding without vibration).
 
 use super::{Integrator, Ode, Work, MAX_DIM};
 
@@ -155,8 +158,11 @@ const D: [f64; 7] = [
 ];
 
 /// One attempted step: the stages, the new state and its error norm. With an integrating
-/// factor the decaying components' stages are those of u = e^(sigma tau) y, g_s (k_s + sigma y_s)
-/// with g_s = e^(sigma c_s h), so that the sums over the stages are the plain ones.
+/// factor the decaying components' stages are those of u = e^(sigma tau) (y - c),
+/// g_s (k_s + sigma (y_s - c)) with g_s = e^(sigma c_s h), so that the sums over the stages are
+/// the plain ones. The shift c = y + y'/sigma at the step's start is where the frozen decay
+/// leads: a steady slip (y' + sigma y constant) is then integrated exactly, as plain
+/// Dormand-Prince does, instead of as the growing exponential e^(sigma tau) y.
 struct Trial {
     k: [[f64; MAX_DIM]; 7],
     y_new: [f64; MAX_DIM],
@@ -167,6 +173,7 @@ struct Trial {
     decaying: Decaying,
     g: [f64; 7],
     k_last: [f64; MAX_DECAYING],
+    shift: [f64; MAX_DECAYING],
 }
 
 impl Trial {
@@ -179,6 +186,7 @@ impl Trial {
             decaying: Decaying::NONE,
             g: [1.0; 7],
             k_last: [0.0; MAX_DECAYING],
+            shift: [0.0; MAX_DECAYING],
         }
     }
 
@@ -215,28 +223,32 @@ const PREDICTED_SLACK: f64 = 1e-3;
 /// evaluation while a kink is being located costs a few products per state.
 struct Dense {
     r: [[f64; MAX_DIM]; 5],
-    /// sigma h and the components whose interpolant is of e^(sigma theta h) y.
+    /// sigma h, the components whose interpolant is of e^(sigma theta h) (y - c), and their c.
     sigma_h: f64,
     decaying: Decaying,
+    shift: [f64; MAX_DECAYING],
 }
 
 impl Dense {
     fn new(n: usize, y: &[f64], tr: &Trial, h: f64) -> Self {
         let mut r = [[0.0; MAX_DIM]; 5];
-        // The interpolant of u = e^(sigma tau) y for the decaying components.
+        // The interpolant of u = e^(sigma tau) (y - c) for the decaying components.
+        let mut y0 = [0.0; MAX_DIM];
+        y0[..n].copy_from_slice(&y[..n]);
         let mut y_new = tr.y_new;
-        for j in tr.decaying.iter() {
-            y_new[j] *= tr.g[6];
+        for (m, j) in tr.decaying.iter().enumerate() {
+            y0[j] -= tr.shift[m];
+            y_new[j] = (y_new[j] - tr.shift[m]) * tr.g[6];
         }
         for j in 0..n {
-            let r2 = y_new[j] - y[j];
+            let r2 = y_new[j] - y0[j];
             let r3 = h * tr.k[0][j] - r2;
             let r4 = r2 - h * tr.k[6][j] - r3;
             let mut r5 = 0.0;
             for (s, d) in D.iter().enumerate() {
                 r5 += d * tr.k[s][j];
             }
-            r[0][j] = y[j];
+            r[0][j] = y0[j];
             r[1][j] = r2;
             r[2][j] = r3;
             r[3][j] = r4;
@@ -246,6 +258,7 @@ impl Dense {
             r,
             sigma_h: tr.sigma * h,
             decaying: tr.decaying,
+            shift: tr.shift,
         }
     }
 
@@ -258,8 +271,8 @@ impl Dense {
         }
         if !self.decaying.is_empty() {
             let back = (-self.sigma_h * theta).exp();
-            for j in self.decaying.iter() {
-                out[j] *= back;
+            for (m, j) in self.decaying.iter().enumerate() {
+                out[j] = self.shift[m] + out[j] * back;
             }
         }
     }
@@ -320,8 +333,9 @@ impl Dopri5 {
             tr.sigma = sigma.min(MAX_DECAY_PER_STEP / h);
             tr.decaying = decaying;
             tr.g = stage_factors(tr.sigma * h);
-            for j in decaying.iter() {
-                tr.k[0][j] += tr.sigma * y[j];
+            for (m, j) in decaying.iter().enumerate() {
+                tr.shift[m] = y[j] + k1[j] / tr.sigma;
+                tr.k[0][j] += tr.sigma * (y[j] - tr.shift[m]);
             }
         } else {
             tr.sigma = 0.0;
@@ -330,6 +344,12 @@ impl Dopri5 {
         // Whole fixed-length rows (the states past n stay 0): loops of constant length.
         let mut y0 = [0.0; MAX_DIM];
         y0[..n].copy_from_slice(&y[..n]);
+        if lawson {
+            // u starts at y - c.
+            for (m, j) in decaying.iter().enumerate() {
+                y0[j] -= tr.shift[m];
+            }
+        }
         let mut tmp = [0.0; MAX_DIM];
         // The stages written out: with the rows of A as constants the zero terms drop out (the
         // compiler may not drop 0 * k itself) and the sums run row by row.
@@ -350,8 +370,8 @@ impl Dopri5 {
                 if lawson {
                     // tmp holds u there: back to y.
                     let back = 1.0 / tr.g[$s];
-                    for j in decaying.iter() {
-                        tmp[j] *= back;
+                    for (m, j) in decaying.iter().enumerate() {
+                        tmp[j] = tr.shift[m] + tmp[j] * back;
                     }
                 }
                 let (_, rest) = tr.k.split_at_mut($s);
@@ -361,7 +381,7 @@ impl Dopri5 {
                         if $s == 6 {
                             tr.k_last[m] = tr.k[$s][j];
                         }
-                        tr.k[$s][j] = tr.g[$s] * (tr.k[$s][j] + tr.sigma * tmp[j]);
+                        tr.k[$s][j] = tr.g[$s] * (tr.k[$s][j] + tr.sigma * (tmp[j] - tr.shift[m]));
                     }
                 }
             }};
@@ -398,7 +418,7 @@ impl Dopri5 {
                 continue;
             }
             controlled += 1;
-            let scale = self.atol[j] + self.rtol * y0[j].abs().max(tmp[j].abs());
+            let scale = self.atol[j] + self.rtol * y[j].abs().max(tmp[j].abs());
             let q = h * e[j] / scale;
             sum += q * q;
         }
@@ -848,6 +868,64 @@ mod tests {
             with < 0.1 * without,
             "{with} with the factor, {without} without"
         );
+    }
+
+    /// y' = v - lambda y: a relaxation towards a steady slip, with the decay marked.
+    struct Steady {
+        lambda: f64,
+        v: f64,
+    }
+    impl Ode for Steady {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn rhs(&self, _t: f64, y: &[f64], dydt: &mut [f64]) {
+            dydt[0] = self.v - self.lambda * y[0];
+        }
+    }
+    impl Switching for Steady {
+        fn switches(&self, _t: f64, _y: &[f64], _out: &mut [f64; MAX_SWITCHES]) -> usize {
+            0
+        }
+        fn switches_and_decay(
+            &self,
+            _t: f64,
+            _y: &[f64],
+            _out: &mut [f64; MAX_SWITCHES],
+        ) -> (usize, f64) {
+            (0, self.lambda)
+        }
+        fn decaying(&self) -> &[usize] {
+            &[0]
+        }
+    }
+
+    /// Oracle: y = (v / lambda)(1 - e^(-lambda t)). With the rate frozen at its true value the
+    /// shifted integrating factor is exact at any step (here lambda h = 5, where plain dopri5 is
+    /// unstable), and a start on the steady state stays on it: the equilibrium a plain Lawson
+    /// step would integrate as the growing exponential e^(lambda t).
+    #[test]
+    fn integrating_factor_is_exact_for_a_frozen_relaxation() {
+        let ode = Steady {
+            lambda: 50.0,
+            v: 3.0,
+        };
+        for y0 in [0.0, ode.v / ode.lambda] {
+            let mut d = dopri(1e3);
+            d.h = 0.1;
+            d.h_max = 0.1;
+            let mut y = [y0];
+            let mut work = Work::default();
+            d.integrate_switched(&ode, 0.0, 2.0, &mut y, &mut work)
+                .unwrap();
+            let exact =
+                ode.v / ode.lambda + (y0 - ode.v / ode.lambda) * (-ode.lambda * 2.0_f64).exp();
+            assert!(
+                (y[0] - exact).abs() < 1e-14,
+                "from {y0}: {} vs {exact}",
+                y[0]
+            );
+        }
     }
 
     /// Oracle: integral of |cos t| over [0, 10] = 6 + sin(10 - 3 pi). Ending the steps on the

@@ -82,9 +82,9 @@ fn held_body_matches_scene_l_lugre() {
     );
 }
 
-/// Oracle: the dopri5 solution at a 100x tighter tolerance; the error follows the tolerance.
-/// (Between rtol 1e-8 and 1e-9 the split law's error stays near 1e-7: the Stribeck band of
-/// |v2|/g(v2), which no switch marks, is resolved only by steps below that.)
+/// Oracle: the dopri5 solution at rtol 1e-12; the error follows the tolerance. (Between rtol
+/// 1e-8 and 1e-9 the split law's error stays near 1e-7: the Stribeck band of |v2|/g(v2), which
+/// no switch marks, is resolved only by steps below that.)
 #[test]
 fn dopri5_meets_its_tolerance_for_both_slip_laws() {
     for slip in ["split", "total"] {
@@ -92,12 +92,15 @@ fn dopri5_meets_its_tolerance_for_both_slip_laws() {
         v.set(vr::INITIAL, f64::from(INITIAL.value_of("sliding").unwrap()));
         v.set(vr::TOLERANCE, 1e-12);
         let reference = mean_after(&v, 20);
-        v.set(vr::TOLERANCE, 1e-10);
-        let mean = mean_after(&v, 20);
-        assert!(
-            (mean / reference - 1.0).abs() < 1e-7,
-            "{slip}: {mean} vs {reference}"
-        );
+        // The default tolerance, and one where the split law is past its plateau.
+        for (rtol, bound) in [(1e-6, 1e-6), (1e-10, 1e-9)] {
+            v.set(vr::TOLERANCE, rtol);
+            let mean = mean_after(&v, 20);
+            assert!(
+                (mean / reference - 1.0).abs() < bound,
+                "{slip} at rtol {rtol:e}: {mean} vs {reference}"
+            );
+        }
     }
 }
 
