@@ -7,7 +7,7 @@ Run from the repository root (builds what it needs with cargo):
     .venv/bin/pip install -r benches/requirements.txt
     .venv/bin/python benches/transverse.py            [--quick]
 
-The experiment is the issue's: vd = 0.5 mm/s, va = 2 mm/s, f = 3 kHz, starting in steady sliding
+The experiment: vd = 0.5 mm/s, va = 2 mm/s, f = 3 kHz, starting in steady sliding
 (`initial = sliding`), both slip laws, and kt x 1000 (the stiff case). The quantity is FFx_mean,
 the mean of FFx over the last vibration period; the error is relative to our dopri5 at
 rtol 1e-12 over the same span (the report states that run's own error at about 1e-11; the stored

@@ -140,7 +140,8 @@ fn restore_continues_identically() {
     }
 }
 
-pub(super) fn issue_case(solver: &str, slip: &str, kt_factor: f64, tolerance: f64) -> ValueSet {
+/// The benchmark case: vd 0.5 mm/s, va 2 mm/s, f 3 kHz from steady sliding, kt scaled.
+pub(super) fn benchmark_case(solver: &str, slip: &str, kt_factor: f64, tolerance: f64) -> ValueSet {
     let mut v = values(solver, slip);
     v.set(vr::INITIAL, f64::from(INITIAL.value_of("sliding").unwrap()));
     v.set(vr::VD, 5e-4);
@@ -156,9 +157,9 @@ pub(super) fn issue_case(solver: &str, slip: &str, kt_factor: f64, tolerance: f6
 #[test]
 fn radau5_meets_a_tight_dopri5_reference() {
     for slip in ["split", "total"] {
-        let reference = mean_after(&issue_case("dopri5", slip, 1.0, 1e-11), 15);
+        let reference = mean_after(&benchmark_case("dopri5", slip, 1.0, 1e-11), 15);
         let error = |tol: f64| {
-            (mean_after(&issue_case("radau5", slip, 1.0, tol), 15) / reference - 1.0).abs()
+            (mean_after(&benchmark_case("radau5", slip, 1.0, tol), 15) / reference - 1.0).abs()
         };
         let (loose, tight) = (error(1e-5), error(1e-8));
         assert!(tight < 1e-6, "{slip}: {tight} at rtol 1e-8");
@@ -172,7 +173,7 @@ fn radau5_meets_a_tight_dopri5_reference() {
 #[test]
 fn radau5_handles_the_stiff_contact() {
     let run = |solver: &str, tol: f64| {
-        let v = issue_case(solver, "split", 1000.0, tol);
+        let v = benchmark_case(solver, "split", 1000.0, tol);
         let mut scene = Transverse::new(&v, 0.0).unwrap();
         for _ in 0..6 {
             scene.do_step(1.0 / 3000.0, &v).unwrap();
@@ -287,7 +288,7 @@ fn trimmed_scene_without_vibration_matches_the_full_one() {
 /// sub-steps are the same and so is FFx, bit for bit) or not.
 #[test]
 fn trimmed_scene_without_the_mean_matches_the_full_one() {
-    let mut v = issue_case("dopri5", "split", 1.0, 1e-9);
+    let mut v = benchmark_case("dopri5", "split", 1.0, 1e-9);
     v.set(vr::INITIAL, f64::from(INITIAL.value_of("rest").unwrap()));
     let mut tight = v.clone();
     tight.set(vr::TOLERANCE, 1e-12);

@@ -1,11 +1,11 @@
-use super::super::tests::{issue_case, mean_after};
+use super::super::tests::{benchmark_case, mean_after};
 use super::super::Transverse;
 use crate::interface::transverse::vr;
 use crate::scenes::Scene;
 
-/// Mean FFx over period `periods` of the issue's case with `solver` at `n` steps a period.
+/// Mean FFx over period `periods` of the benchmark case with `solver` at `n` steps a period.
 fn fixed_step_mean(solver: &str, slip: &str, kt_factor: f64, n: f64, periods: u32) -> f64 {
-    let mut v = issue_case(solver, slip, kt_factor, 1e-10);
+    let mut v = benchmark_case(solver, slip, kt_factor, 1e-10);
     v.set(vr::STEPS_PER_PERIOD, n);
     mean_after(&v, periods)
 }
@@ -16,7 +16,7 @@ fn fixed_step_mean(solver: &str, slip: &str, kt_factor: f64, n: f64, periods: u3
 #[test]
 fn second_order_against_a_tight_dopri5_run() {
     for slip in ["split", "total"] {
-        let reference = mean_after(&issue_case("dopri5", slip, 1.0, 1e-12), 10);
+        let reference = mean_after(&benchmark_case("dopri5", slip, 1.0, 1e-12), 10);
         let error = |n: f64| fixed_step_mean("exponential", slip, 1.0, n, 10) / reference - 1.0;
         let (e1, e2, e3) = (error(200.0), error(400.0), error(800.0));
         for ratio in [e1 / e2, e2 / e3] {
@@ -34,7 +34,7 @@ fn second_order_against_a_tight_dopri5_run() {
 #[test]
 fn stable_and_accurate_on_the_stiff_contact_where_rk4_blows_up() {
     for slip in ["split", "total"] {
-        let mut rk4 = issue_case("rk4", slip, 1000.0, 1e-10);
+        let mut rk4 = benchmark_case("rk4", slip, 1000.0, 1e-10);
         rk4.set(vr::STEPS_PER_PERIOD, 200.0);
         let mut scene = Transverse::new(&rk4, 0.0).unwrap();
         let blew_up = (0..6).any(|_| scene.do_step(1.0 / 3000.0, &rk4).is_err());
@@ -43,7 +43,7 @@ fn stable_and_accurate_on_the_stiff_contact_where_rk4_blows_up() {
             "{slip}: rk4 survived 200 steps a period at kt x 1000"
         );
 
-        let reference = mean_after(&issue_case("radau5", slip, 1000.0, 1e-8), 6);
+        let reference = mean_after(&benchmark_case("radau5", slip, 1000.0, 1e-8), 6);
         let mean = fixed_step_mean("exponential", slip, 1000.0, 200.0, 6);
         assert!(
             (mean / reference - 1.0).abs() < 1e-4,
