@@ -765,12 +765,20 @@ mod tests {
         }
     }
 
-    /// y' = -lambda y + cos t, y(0) = 0: y = (lambda cos t + sin t - lambda e^(-lambda t)) /
-    /// (lambda^2 + 1), with the decay marked for the integrating factor.
+    /// y' = forcing(t) - lambda y, with the decay marked for the integrating factor.
     struct Relax {
         lambda: f64,
+        forcing: fn(f64) -> f64,
     }
     impl Relax {
+        /// forcing cos t from y(0) = 0: y = (lambda cos t + sin t - lambda e^(-lambda t)) /
+        /// (lambda^2 + 1).
+        fn cosine(lambda: f64) -> Self {
+            Relax {
+                lambda,
+                forcing: f64::cos,
+            }
+        }
         fn exact(&self, t: f64) -> f64 {
             let l = self.lambda;
             (l * t.cos() + t.sin() - l * (-l * t).exp()) / (l * l + 1.0)
@@ -781,7 +789,7 @@ mod tests {
             1
         }
         fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
-            dydt[0] = -self.lambda * y[0] + t.cos();
+            dydt[0] = (self.forcing)(t) - self.lambda * y[0];
         }
     }
     impl Switching for Relax {
@@ -841,7 +849,7 @@ mod tests {
     /// plain dopri5's or less.
     #[test]
     fn integrating_factor_is_fourth_order_or_better_and_beats_plain_steps() {
-        let ode = Relax { lambda: 20.0 };
+        let ode = Relax::cosine(20.0);
         let t_end = 0.5;
         let err = |h: f64, factor: bool| {
             let mut d = dopri(1e3);
@@ -870,47 +878,19 @@ mod tests {
         );
     }
 
-    /// y' = v - lambda y: a relaxation towards a steady slip, with the decay marked.
-    struct Steady {
-        lambda: f64,
-        v: f64,
-    }
-    impl Ode for Steady {
-        fn dim(&self) -> usize {
-            1
-        }
-        fn rhs(&self, _t: f64, y: &[f64], dydt: &mut [f64]) {
-            dydt[0] = self.v - self.lambda * y[0];
-        }
-    }
-    impl Switching for Steady {
-        fn switches(&self, _t: f64, _y: &[f64], _out: &mut [f64; MAX_SWITCHES]) -> usize {
-            0
-        }
-        fn switches_and_decay(
-            &self,
-            _t: f64,
-            _y: &[f64],
-            _out: &mut [f64; MAX_SWITCHES],
-        ) -> (usize, f64) {
-            (0, self.lambda)
-        }
-        fn decaying(&self) -> &[usize] {
-            &[0]
-        }
-    }
-
-    /// Oracle: y = (v / lambda)(1 - e^(-lambda t)). With the rate frozen at its true value the
-    /// shifted integrating factor is exact at any step (here lambda h = 5, where plain dopri5 is
-    /// unstable), and a start on the steady state stays on it: the equilibrium a plain Lawson
-    /// step would integrate as the growing exponential e^(lambda t).
+    /// Oracle: y' = v - lambda y has y = v / lambda + (y0 - v / lambda) e^(-lambda t). With the
+    /// rate frozen at its true value the shifted integrating factor is exact at any step (here
+    /// lambda h = 5, where plain dopri5 is unstable), and a start on the steady state stays on
+    /// it: the equilibrium a plain Lawson step would integrate as the growing exponential
+    /// e^(lambda t).
     #[test]
     fn integrating_factor_is_exact_for_a_frozen_relaxation() {
-        let ode = Steady {
-            lambda: 50.0,
-            v: 3.0,
+        let (lambda, v) = (50.0, 3.0);
+        let ode = Relax {
+            lambda,
+            forcing: |_| 3.0, // v
         };
-        for y0 in [0.0, ode.v / ode.lambda] {
+        for y0 in [0.0, v / lambda] {
             let mut d = dopri(1e3);
             d.h = 0.1;
             d.h_max = 0.1;
@@ -918,8 +898,7 @@ mod tests {
             let mut work = Work::default();
             d.integrate_switched(&ode, 0.0, 2.0, &mut y, &mut work)
                 .unwrap();
-            let exact =
-                ode.v / ode.lambda + (y0 - ode.v / ode.lambda) * (-ode.lambda * 2.0_f64).exp();
+            let exact = v / lambda + (y0 - v / lambda) * (-lambda * 2.0_f64).exp();
             assert!(
                 (y[0] - exact).abs() < 1e-14,
                 "from {y0}: {} vs {exact}",
