@@ -33,6 +33,10 @@ pub struct Interface<'a> {
     pub experiment: Experiment,
     /// canInterpolateInputs, and first output derivatives (maxOutputDerivativeOrder = 1).
     pub interpolates_inputs: bool,
+    /// What the XML does not show but the FMU runs with (a scene file's model and hidden values),
+    /// hashed into the GUID with the XML so that changing any of it changes the GUID; empty for a
+    /// full model.
+    pub hidden: &'a str,
 }
 
 impl<'a> Interface<'a> {
@@ -52,13 +56,14 @@ impl<'a> Interface<'a> {
                 tolerance: Some(e.tolerance),
             },
             interpolates_inputs: crate::interface::interpolates_inputs(table),
+            hidden: "",
         }
     }
 
-    /// The XML and its GUID: the GUID hashes the XML written with an empty GUID, then takes its
-    /// place, so an FMU's binary can recompute it from what it describes.
+    /// The XML and its GUID: the GUID hashes the XML written with an empty GUID (and `hidden`),
+    /// then takes its place, so an FMU's binary can recompute it from what it describes.
     pub fn write(&self) -> (String, String) {
-        let guid = guid_of(&to_xml(&self.model_description("")));
+        let guid = guid_of(&(to_xml(&self.model_description("")) + self.hidden));
         let xml = to_xml(&self.model_description(&guid));
         (guid, xml)
     }

@@ -24,14 +24,24 @@ const INPUT_SWITCHES: &[(&str, &str, &str, &str)] = &[
 
 const SOLVER_PARAMETER: &str = "solver";
 
+/// The parameter each model's adaptive solvers integrate to: the experiment's tolerance states it.
+const TOLERANCE_PARAMETER: &[(&str, &str)] = &[
+    ("LongitudinalFriction", "tolerance"),
+    ("TransverseFriction", "tolerance"),
+    ("DryFrictionOscillator", "rtol"),
+];
+
 pub fn scene(file: &str, raw: Raw, text: &str) -> Result<SceneFile, String> {
     let error = |key: &str, message: String| format!("{file}: key `{key}`: {message}");
     check_name(&raw.name).map_err(|m| error("name", m))?;
-    let model = scenes::model(&raw.model).ok_or_else(|| {
-        let known: Vec<&str> = scenes::MODELS
+    // The models with a friction law; DriveTrain has nothing to trim.
+    let model = scenes::model(&raw.model).filter(|m| {
+        LAW_PARAMETER
             .iter()
-            .map(|m| m.table.model_identifier)
-            .collect();
+            .any(|(id, _)| *id == m.table.model_identifier)
+    });
+    let model = model.ok_or_else(|| {
+        let known: Vec<&str> = LAW_PARAMETER.iter().map(|(id, _)| *id).collect();
         error(
             "model",
             format!(
@@ -42,6 +52,16 @@ pub fn scene(file: &str, raw: Raw, text: &str) -> Result<SceneFile, String> {
         )
     })?;
     let table = model.table;
+    if let Some(description) = &raw.description {
+        if let Some(c) = description.chars().find(|c| c.is_control()) {
+            return Err(error(
+                "description",
+                format!(
+                    "holds the control character {c:?}, which XML cannot carry: expected printable text"
+                ),
+            ));
+        }
+    }
     let law_name = LAW_PARAMETER
         .iter()
         .find(|(id, _)| *id == table.model_identifier)
@@ -159,7 +179,27 @@ pub fn scene(file: &str, raw: Raw, text: &str) -> Result<SceneFile, String> {
 
     // Kept variables in table order: the XML lists them so.
     kept.sort_by_key(|&vr| table.variables.iter().position(|v| v.value_reference == vr));
-    let experiment = experiment(&raw.experiment).map_err(|(key, m)| error(key, m))?;
+    let mut experiment = experiment(&raw.experiment).map_err(|(key, m)| error(key, m))?;
+    // The DefaultExperiment's tolerance is the one the FMU integrates to, never a second number.
+    if let Some(var) = TOLERANCE_PARAMETER
+        .iter()
+        .find(|(id, _)| *id == table.model_identifier)
+        .and_then(|(_, name)| table.by_name(name))
+    {
+        let used = values.real(var.value_reference);
+        match experiment.tolerance {
+            Some(stated) if stated != used => {
+                return Err(error(
+                    "experiment.tolerance",
+                    format!(
+                        "tolerance = {stated:e}, but the solver integrates to {} = {used:e}: expected the same value, or no experiment.tolerance (it then states {})",
+                        var.name, var.name
+                    ),
+                ))
+            }
+            _ => experiment.tolerance = Some(used),
+        }
+    }
     Ok(SceneFile {
         name: raw.name,
         description: raw

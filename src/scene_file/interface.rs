@@ -5,6 +5,7 @@ use super::SceneFile;
 use crate::interface::variable::{Causality, Kind, Variable};
 use crate::model_description::Interface;
 use crate::scenes::Scope;
+use std::fmt::Write as _;
 
 impl SceneFile {
     /// The kept variables, in table order.
@@ -44,6 +45,13 @@ impl SceneFile {
             .filter(|v| v.causality != Causality::Output)
             .map(|v| (v.value_reference, self.values.real(v.value_reference)))
             .collect();
+        // The model and every fixed value, exactly (their bits): an FMU whose scene file was
+        // edited anywhere that matters no longer matches its GUID.
+        let mut hidden = format!("\nmodel={}", self.model.table.model_identifier);
+        for (var, value) in self.fixed() {
+            let _ = write!(hidden, ";{}={:016x}", var.value_reference, value.to_bits());
+        }
+        let keeps_input = variables.iter().any(|v| v.causality == Causality::Input);
         Interface {
             model_identifier: &self.name,
             description: &self.description,
@@ -51,7 +59,10 @@ impl SceneFile {
             starts: &starts,
             enum_types: self.model.table.enum_types,
             experiment: self.experiment,
-            interpolates_inputs: crate::interface::interpolates_inputs(self.model.table),
+            // Only a kept input can be interpolated; the output derivatives come with it.
+            interpolates_inputs: keeps_input
+                && crate::interface::interpolates_inputs(self.model.table),
+            hidden: &hidden,
         }
         .write()
     }

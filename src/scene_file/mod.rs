@@ -17,7 +17,7 @@
 //! start = 0.0
 //! stop = 0.015
 //! step = 1.6666666666666667e-5  # stepSize
-//! tolerance = 1e-6            # optional
+//! # tolerance: optional; the solver's own tolerance parameter, which it must equal
 //! ```
 //!
 //! Everything not kept is fixed at its value (the scene file's, else the model's default) and

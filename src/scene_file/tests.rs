@@ -59,7 +59,8 @@ fn a_valid_file_gives_its_values_and_keeps_what_it_lists() {
     assert_eq!(scene.values.real(vr::KT), 6.286e7);
     assert_eq!(scene.kept, vec![vr::KT, vr::VD, vr::FFX, vr::FD]);
     assert_eq!(scene.experiment.stop, 0.015);
-    assert_eq!(scene.experiment.tolerance, None);
+    // Not given: it states the tolerance the solver integrates to (the model's default).
+    assert_eq!(scene.experiment.tolerance, Some(1e-10));
     let scope = scene.scope();
     assert!(scope.exposes(vr::VD) && scope.exposes(vr::FFX));
     assert!(scope.fixes(vr::VA) && scope.fixes(vr::VD_IN) && scope.fixes(vr::FF));
@@ -88,14 +89,30 @@ fn the_trimmed_xml_lists_the_kept_variables_and_hashes_to_its_guid() {
     }
     assert!(xml.contains("start=\"5e-4\""));
     assert!(!xml.contains("name=\"va\"") && !xml.contains("SlipLaw"));
-    assert!(xml.contains("stopTime=\"0.015\"") && !xml.contains("tolerance="));
+    assert!(xml.contains("stopTime=\"0.015\"") && xml.contains("tolerance=\"0.0000000001\""));
     assert!(xml.contains("modelIdentifier=\"Fig4a\""));
     // Fd depends on vd_in in the full model; hidden, it is no dependency here.
     assert!(xml.contains("<Unknown index=\"4\" dependencies=\"\"/>"));
-    let blank = xml.replace(&guid, "");
-    assert_eq!(crate::model_description::guid_of(&blank), guid);
-    let other = parse("fig4a.toml", &variant("vd = 0.5e-3", "vd = 0.6e-3")).unwrap();
-    assert_ne!(other.model_description().0, guid);
+    // The GUID changes with a kept start value, with a hidden value (which the XML does not
+    // show) and with the model, and with nothing else.
+    for (from, to) in [
+        ("vd = 0.5e-3", "vd = 0.6e-3"),
+        ("steps_per_period = 400", "steps_per_period = 401"),
+    ] {
+        let other = parse("fig4a.toml", &variant(from, to)).unwrap();
+        assert_ne!(other.model_description().0, guid, "{to}");
+    }
+    let hidden_changed = parse("fig4a.toml", &variant("va = 0.0", "va = 1e-3")).unwrap();
+    assert_eq!(
+        hidden_changed
+            .model_description()
+            .1
+            .replace(&hidden_changed.model_description().0, ""),
+        xml.replace(&guid, "")
+    );
+    assert_ne!(hidden_changed.model_description().0, guid);
+    let commented = parse("fig4a.toml", &format!("{FIG4A}# a comment\n")).unwrap();
+    assert_eq!(commented.model_description().0, guid);
 }
 
 #[test]
@@ -258,5 +275,39 @@ fn a_bad_experiment_is_refused() {
             "key `experiment.tolerance`",
             "expected a finite tolerance > 0",
         ],
+    );
+    // A second tolerance beside the solver's is refused; the same one is accepted.
+    refused(
+        &variant("step = 1e-5", "step = 1e-5\ntolerance = 1e-6"),
+        &[
+            "key `experiment.tolerance`",
+            "the solver integrates to tolerance = 1e-10",
+        ],
+    );
+    assert!(parse(
+        "fig4a.toml",
+        &variant("step = 1e-5", "step = 1e-5\ntolerance = 1e-10")
+    )
+    .is_ok());
+}
+
+/// Oracle: the format: a description must be XML-safe, and only models with a friction law
+/// are trimmed (DriveTrain has none).
+#[test]
+fn control_characters_and_models_without_a_law_are_refused() {
+    refused(
+        &variant(
+            "description = \"no vibration\"",
+            "description = \"no\\u0001vibration\"",
+        ),
+        &[
+            "key `description`",
+            "control character",
+            "expected printable text",
+        ],
+    );
+    refused(
+        &variant("\"TransverseFriction\"", "\"DriveTrain\""),
+        &["key `model`", "unknown model \"DriveTrain\""],
     );
 }

@@ -114,8 +114,15 @@ def test_model_description_keeps_exactly_what_the_file_lists(packed, stem):
     assert float(md.defaultExperiment.startTime) == experiment["start"]
     assert float(md.defaultExperiment.stopTime) == experiment["stop"]
     assert float(md.defaultExperiment.stepSize) == experiment["step"]
-    tolerance = md.defaultExperiment.tolerance
-    assert (tolerance and float(tolerance)) == experiment.get("tolerance")
+    # The experiment's tolerance is the one the solver integrates to.
+    solver_tolerance = {"LongitudinalFriction": "tolerance", "TransverseFriction": "tolerance",
+                        "DryFrictionOscillator": "rtol"}[scene["model"]]
+    if solver_tolerance in scene["parameters"]:
+        expected = scene["parameters"][solver_tolerance]
+    else:  # the model's default
+        full = fmpy.read_model_description(fmu_path(scene["model"]))
+        expected = next(v.start for v in full.modelVariables if v.name == solver_tolerance)
+    assert float(md.defaultExperiment.tolerance) == float(expected)
 
 
 @pytest.mark.parametrize("stem", [f.stem for f in SCENES])
@@ -258,16 +265,23 @@ def instantiation_log(path, directory):
 
 
 def test_tampered_or_missing_scene_resource_is_refused(packed, tmp_path):
-    """Oracle: the GUID hashes the interface; a scene.toml that describes another one (here vd
-    changed) or none at all cannot be instantiated, and the log says why."""
+    """Oracle: the GUID hashes the interface and every value the scene fixes; a scene.toml that
+    describes another interface (vd's start changed) or runs other hidden values (mu changed)
+    or none at all cannot be instantiated, and the log says why. A comment may change."""
     scene, path = packed["fig4a"]
     directory = pathlib.Path(fmpy.extract(str(path), unzipdir=str(tmp_path / "fmu")))
     resource = directory / "resources" / "scene.toml"
     text = resource.read_text()
-    resource.write_text(text.replace("vd = 5e-4", "vd = 6e-4"))
-    log = instantiation_log(path, directory)
-    assert any(status == 3 and "fmi2Instantiate" in m and "describes an interface with GUID" in m
-               for status, _, m in log), log
+    for old, new in [("vd = 5e-4", "vd = 6e-4"), ("mu = 0.178", "mu = 0.5")]:
+        assert old in text
+        resource.write_text(text.replace(old, new))
+        log = instantiation_log(path, directory)
+        assert any(status == 3 and "fmi2Instantiate" in m
+                   and "describes an interface with GUID" in m for status, _, m in log), (new, log)
+    resource.write_text(text + "# a comment changes nothing the FMU runs\n")
+    md = fmpy.read_model_description(str(path))
+    conftest._UNZIPPED[md.coSimulation.modelIdentifier] = (str(directory), md)
+    Slave(md.coSimulation.modelIdentifier).free()  # accepted from the edited directory
     resource.unlink()
     log = instantiation_log(path, directory)
     assert any("there is no scene file" in m and "scene.toml" in m for _, _, m in log), log
