@@ -1,7 +1,7 @@
 """Parameter sweeps (python/friction_fmu): each row equals a direct fmpy run of its point, the
-local process pool and a Dask cluster write the same CSV, a refused point is recorded with the
-FMU's message, a misspelt plan is refused before any point runs, and the heat map has one cell
-per point.
+sweep's means agree with the scipy Radau reference, the local process pool and a Dask cluster
+write the same CSV, a refused point is recorded with the FMU's message, a misspelt plan is
+refused before any point runs, and the heat map has one cell per point.
 
 Runs are short (30 periods at 3 kHz) and grids tiny, so the file takes a few seconds, most of
 it starting the Dask cluster.
@@ -131,11 +131,10 @@ def test_heat_map_has_one_cell_per_point(local):
 
 
 def test_fig8_grid_file_and_times_per_point():
-    from friction_fmu.grid import load_file, parse_assignment
+    from friction_fmu.grid import parse_assignment
     from friction_fmu.presets import PRESETS
 
-    fig8 = load_file(ROOT / "python" / "friction_fmu" / "fig8.toml")
-    assert fig8 == PRESETS["fig8"]["plan"]()
+    fig8 = PRESETS["fig8"]["plan"]()
     points = fig8.points()
     assert len(points) == 6 * 6 * 2
     assert points[1].values == {"vd": 1e-4, "va": 3e-4, "f": 2000.0}  # last axis fastest
@@ -145,6 +144,33 @@ def test_fig8_grid_file_and_times_per_point():
     assert fig8.outputs[1].column == "FFx_mean:mean_last=30/f"
     assert parse_assignment("vd=0.1e-3, 5e-4,1e-3") == ("vd", [1e-4, 5e-4, 1e-3])
     assert parse_assignment("initial=sliding") == ("initial", ["sliding"])
+
+
+# the corners of the reference's vd x va grid, each under both slip laws
+LAWS, REFERENCE_VD, REFERENCE_VA = ["split", "total"], [1e-4, 2e-3], [3e-4, 12e-3]
+
+
+def test_sweep_agrees_with_scipy_radau_reference():
+    """Oracle: tests/reference/transverse/make_reference.py, an independent implementation of
+    the ODE solved by scipy's Radau at rtol 1e-11: FFx_mean (the mean of FFx over the last
+    period) after 60 periods at 3 kHz from steady sliding. The sweep runs those points with the
+    FMU's default solver and tolerance, 40 communication steps a period, as
+    test_transverse.py's test_matches_stored_reference does, and meets its tolerance."""
+    with open(ROOT / "tests" / "reference" / "transverse" / "means.csv") as handle:
+        reference = {(r["slip_law"], float(r["vd"]), float(r["va"])): r
+                     for r in csv.DictReader(handle)}
+    cases = [reference[(law, vd, va)] for law in LAWS for vd in REFERENCE_VD
+             for va in REFERENCE_VA]
+    assert {float(r["f"]) for r in cases} == {F}
+    assert all(float(r["t_end"]) == pytest.approx(60 / F, rel=1e-15) for r in cases)
+    sweep = Plan(grid={"slip_law": LAWS, "vd": REFERENCE_VD, "va": REFERENCE_VA},
+                 fixed={"f": F, "initial": "sliding"}, outputs=[Output("FFx_mean")],
+                 stop_time=Span(60.0, "f"), step=Span(1.0 / 40, "f"))
+    rows, summary = run_sweep(fmu_path(MODEL), sweep, workers=2, progress=False)
+    assert summary["failed"] == 0 and len(rows) == len(cases) == 8
+    for row in rows:
+        expected = float(reference[(row["slip_law"], row["vd"], row["va"])]["FFx_mean"])
+        assert abs(row["FFx_mean"] / expected - 1.0) <= 1e-5, (row, expected)
 
 
 def _cells(svg):
