@@ -207,7 +207,7 @@ def main(argv=None):
         x, y, column, fixed = view_from_args(args, preset, plan)
         check.plan(fmpy.read_model_description(fmu), plan)
         check.view(plan, x, y, column, fixed)
-    except ValueError as error:
+    except (ValueError, OSError) as error:  # OSError: a missing FMU or grid file
         raise SystemExit(f"error: {error}") from None
     prefix = pathlib.Path(args.out or preset.get("out", "fmu-out/sweeps/sweep"))
     prefix.parent.mkdir(parents=True, exist_ok=True)
