@@ -150,7 +150,8 @@ def slope(steps, errors):
 def main():
     ref = reference()
     steps = [4e-4, 2e-4, 1e-4]
-    print("| H (s) | inputs | max |v_nut err| (m/s) | max |Fd err| (N) | max |x err| (m) |")
+    # no pipes inside a cell: they would split the Markdown table's columns
+    print("| H (s) | inputs | max abs v_nut err (m/s) | max abs Fd err (N) | max abs x err (m) |")
     print("|---|---|---|---|---|")
     for derivatives in (False, True):
         fd_errors = []

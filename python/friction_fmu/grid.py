@@ -38,8 +38,14 @@ class Span:
             return text
         if isinstance(text, (int, float)):
             return Span(float(text))
-        number, _, per = str(text).partition("/")
-        return Span(float(number), per.strip() or None)
+        number, slash, per = str(text).partition("/")
+        try:
+            value = float(number)
+        except ValueError:
+            value = None
+        if value is None or (slash and not per.strip()):
+            raise ValueError(f"time {text!r}: expected seconds or N/PARAM, e.g. 0.05 or 150/f")
+        return Span(value, per.strip() or None)
 
     def at(self, values):
         if self.per is None:

@@ -1,4 +1,5 @@
-"""A heat map of a sweep as hand-written SVG: two grid axes, color = one output column.
+"""A heat map of a sweep as hand-written SVG: two grid axes (or one, drawn as a single row),
+color = one output column.
 
 The other grid axes are either pinned (`fixed`, e.g. f = 3000) or faceted into small multiples,
 one panel per combination of their values. All panels share one color scale and one color bar.
@@ -41,27 +42,29 @@ def _key(values):
 
 
 def render(rows, grid, x, y, column, units=None, fixed=None, title=None):
-    """The SVG text. `grid` is the ordered axes {name: values}; `units` maps a name (grid axis
-    or output variable) to its unit; `fixed` pins other axes to one value each."""
+    """The SVG text. `grid` is the ordered axes {name: values}; `y` None draws one row of
+    cells along x (a one-axis sweep); `units` maps a name (grid axis or output variable) to its
+    unit; `fixed` pins other axes to one value each."""
     units, fixed = units or {}, fixed or {}
-    for axis in (x, y, *fixed):
+    for axis in (x, *([y] if y is not None else []), *fixed):
         if axis not in grid:
             raise ValueError(f"{axis!r} is not a grid axis (axes: {', '.join(grid)})")
     facets = [a for a in grid if a not in (x, y) and a not in fixed]
     panels = list(itertools.product(*(grid[a] for a in facets)))
-    names = [x, y, *fixed, *facets]
+    ys = grid[y] if y is not None else [None]
+    names = [x, *([y] if y is not None else []), *fixed, *facets]
     by_key = {_key(row[n] for n in names): row for row in rows}
 
     def row_at(xv, yv, panel):
-        return by_key.get(_key([xv, yv, *fixed.values(), *panel]))
+        return by_key.get(_key([xv, *([yv] if y is not None else []), *fixed.values(), *panel]))
 
     shown = [_value(row_at(xv, yv, p) or {}, column)
-             for p in panels for xv in grid[x] for yv in grid[y]]
+             for p in panels for xv in grid[x] for yv in ys]
     finite = [v for v in shown if v is not None]
     low, high = (min(finite), max(finite)) if finite else (0.0, 1.0)
     span = (high - low) or 1.0
 
-    nx, ny = len(grid[x]), len(grid[y])
+    nx, ny = len(grid[x]), len(ys)
     panel_w, panel_h = LEFT + nx * CELL_W + GAP, TOP + ny * CELL_H + BOTTOM
     columns = min(len(panels), 3)
     width = columns * panel_w + BAR_GAP + BAR_W + BAR_LABEL
@@ -80,16 +83,17 @@ def render(rows, grid, x, y, column, units=None, fixed=None, title=None):
         out.append(f'<text x="{ox + nx * CELL_W / 2}" y="{oy - 10}" text-anchor="middle">'
                    f'{escape(heading)}</text>')
         for i, xv in enumerate(grid[x]):
-            for j, yv in enumerate(grid[y]):
+            for j, yv in enumerate(ys):
                 row = row_at(xv, yv, panel) or {"status": "missing", "message": "not run"}
                 value = _value(row, column)
                 cx, cy = ox + i * CELL_W, oy + (ny - 1 - j) * CELL_H  # y grows upward
                 fill = "#cccccc" if value is None else color((value - low) / span)
+                where = f"{x}={xv}" + (f", {y}={yv}" if y is not None else "")
                 tip = (f"{row.get('status')}: {row.get('message')}" if value is None
                        else f"{value:.6g}")
                 out.append(f'<rect class="cell" x="{cx}" y="{cy}" width="{CELL_W}" '
                            f'height="{CELL_H}" fill="{fill}" stroke="white">'
-                           f'<title>{escape(f"{x}={xv}, {y}={yv}: {tip}")}</title></rect>')
+                           f'<title>{escape(f"{where}: {tip}")}</title></rect>')
                 text = "failed" if value is None else f"{value:.3g}"
                 ink = "black" if value is None or (value - low) / span > 0.6 else "white"
                 out.append(f'<text x="{cx + CELL_W / 2}" y="{cy + CELL_H / 2 + 4}" '
@@ -97,11 +101,13 @@ def render(rows, grid, x, y, column, units=None, fixed=None, title=None):
         for i, xv in enumerate(grid[x]):
             out.append(f'<text x="{ox + (i + 0.5) * CELL_W}" y="{oy + ny * CELL_H + 14}" '
                        f'text-anchor="middle">{_tick(xv)}</text>')
-        for j, yv in enumerate(grid[y]):
-            out.append(f'<text x="{ox - 6}" y="{oy + (ny - 1 - j + 0.5) * CELL_H + 4}" '
-                       f'text-anchor="end">{_tick(yv)}</text>')
         out.append(f'<text x="{ox + nx * CELL_W / 2}" y="{oy + ny * CELL_H + 36}" '
                    f'text-anchor="middle">{escape(label(x, units))}</text>')
+        if y is None:
+            continue  # one row: no y ticks or label
+        for j, yv in enumerate(ys):
+            out.append(f'<text x="{ox - 6}" y="{oy + (ny - 1 - j + 0.5) * CELL_H + 4}" '
+                       f'text-anchor="end">{_tick(yv)}</text>')
         ly = oy + ny * CELL_H / 2
         lx = ox - LEFT + 14
         out.append(f'<text x="{lx}" y="{ly}" text-anchor="middle" '

@@ -23,8 +23,8 @@ import time
 
 import fmpy
 
-from . import heatmap
-from .grid import Output, Plan, Span, load_file, parse_assignment, parse_value
+from . import check, heatmap
+from .grid import Output, Plan, Span, load_file, parse_assignment
 from .presets import PRESETS
 from .progress import Progress
 from .runner import FmuSource, run_point
@@ -56,7 +56,7 @@ def run_sweep(fmu, plan, scheduler=None, workers=None, ship=None, progress=True)
     `ship` is how the FMU reaches the workers: "path" (a filesystem they share with this
     process; the default on local cores) or "bytes" (the .fmu's content; the default on Dask,
     safe on any cluster)."""
-    check_names(fmu, plan)
+    check.plan(fmpy.read_model_description(fmu), plan)
     ship = ship or ("bytes" if scheduler is not None else "path")
     source = FmuSource.by_bytes(fmu) if ship == "bytes" else FmuSource.by_path(fmu)
     points = plan.points()
@@ -85,15 +85,6 @@ def run_sweep(fmu, plan, scheduler=None, workers=None, ship=None, progress=True)
         "wall_time_s": time.perf_counter() - began,
     }
     return rows, summary
-
-
-def check_names(fmu, plan):
-    """A misspelt name would fail every point the same way: refuse the sweep up front."""
-    known = {v.name for v in fmpy.read_model_description(fmu).modelVariables}
-    names = [*plan.grid, *plan.fixed, *(o.variable for o in plan.outputs)]
-    unknown = [n for n in names if n not in known]
-    if unknown:
-        raise ValueError(f"{fmu} has no variable {', '.join(map(repr, unknown))}")
 
 
 def columns(plan):
@@ -188,27 +179,41 @@ def plan_from_args(args):
     return plan, preset
 
 
-def main(argv=None):
-    args = parse_args(sys.argv[1:] if argv is None else argv)
-    plan, preset = plan_from_args(args)
-    fmu = args.fmu or preset.get("fmu")
-    if fmu is None:
-        raise SystemExit("give the FMU to sweep")
+def view_from_args(args, preset, plan):
+    """Heat map x, y (None with a single axis: one row), color column and pinned axes."""
     view = {**preset.get("heatmap", {}), **{k: v for k, v in
             {"x": args.x, "y": args.y, "color": args.color}.items() if v}}
-    axes = list(plan.grid)
-    x = view.get("x", axes[0])
-    y = view.get("y", axes[1] if len(axes) > 1 else axes[0])
+    fixed = {}
+    for text in args.fix:
+        name, values = parse_assignment(text)
+        if len(values) != 1:
+            raise ValueError(f"--fix {text}: one value expected")
+        fixed[name] = values[0]
+    free = [a for a in plan.grid if a not in fixed]
+    x = view.get("x") or next((a for a in free if a != view.get("y")), list(plan.grid)[0])
+    y = view.get("y") or next((a for a in free if a != x), None)
     column = view.get("color", plan.outputs[0].column)
-    fixed = {n: parse_value(v) for n, v in (t.split("=", 1) for t in args.fix)}
+    return x, y, column, fixed
+
+
+def main(argv=None):
+    args = parse_args(sys.argv[1:] if argv is None else argv)
+    # every refusal before the sweep starts is one line and a non-zero exit, no traceback
+    try:
+        plan, preset = plan_from_args(args)
+        fmu = args.fmu or preset.get("fmu")
+        if fmu is None:
+            raise SystemExit("give the FMU to sweep")
+        x, y, column, fixed = view_from_args(args, preset, plan)
+        check.plan(fmpy.read_model_description(fmu), plan)
+        check.view(plan, x, y, column, fixed)
+    except (ValueError, OSError) as error:  # OSError: a missing FMU or grid file
+        raise SystemExit(f"error: {error}") from None
     prefix = pathlib.Path(args.out or preset.get("out", "fmu-out/sweeps/sweep"))
     prefix.parent.mkdir(parents=True, exist_ok=True)
 
-    try:
-        rows, summary = run_sweep(fmu, plan, scheduler=args.scheduler, workers=args.workers,
-                                  ship=args.ship, progress=not args.quiet)
-    except ValueError as error:
-        raise SystemExit(str(error)) from None
+    rows, summary = run_sweep(fmu, plan, scheduler=args.scheduler, workers=args.workers,
+                              ship=args.ship, progress=not args.quiet)
     write_csv(prefix.with_suffix(".csv"), plan, rows)
     svg = heatmap.render(rows, plan.grid, x, y, column, heatmap_units(fmu, plan), fixed,
                          title=preset.get("title"))
