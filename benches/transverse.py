@@ -18,7 +18,7 @@ Part 2 (side by side): the same span for all; scipy is slow, so the span is 0.05
 steady from the start) and the CPU time is also given per simulated second (x 20).
 
 The scipy runs use the equations of tests/reference/transverse/make_reference.py (an independent
-Python implementation of SPEC.md's ODE), stopping and restarting at every kink as that script does.
+Python implementation of the continuous-time ODE), stopping and restarting at every kink as that script does.
 CPU time is the CPU time of the running thread: time.thread_time() here (scipy, fmpy), the
 thread clock in the Rust example (the median of three runs).
 """

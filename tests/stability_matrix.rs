@@ -1,4 +1,4 @@
-//! The stability matrix (SPEC.md, "Numerics the user asked for"): every solver of every scene at
+//! The stability matrix : every solver of every scene at
 //! each extreme the scene has a parameter for (src/report/stability.rs lists them), run through
 //! the exported fmi2* functions, and convergence of each solver at a stiff setting.
 //!

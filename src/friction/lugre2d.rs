@@ -1,4 +1,4 @@
-//! LuGre contact in the sliding plane (seed 000, eq. 2-6): a bristle `z = N - M` from the support
+//! LuGre contact in the sliding plane (paper T, eq. 2-6): a bristle `z = N - M` from the support
 //! point M to the body point N, deflected by both motions and slipping back at a rate set by the
 //! Stribeck curve.
 //!
@@ -6,7 +6,7 @@
 
 use nalgebra::Vector2;
 
-/// How the bristle slips back (SPEC.md, Scene T).
+/// How the bristle slips back (paper T).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SlipLaw {
     /// `|v1|/g(v1) + |v2|/g(v2)`: each motion slips the contact on its own, the limit of the
@@ -118,7 +118,7 @@ impl LuGre2d {
     }
 
     /// The contact for bristle `z`, body velocity `v_body` and velocity `v_m` of the support point
-    /// M (eta times the support's): the continuous-time law of SPEC.md, Scene T.
+    /// M (eta times the support's): the continuous-time law of paper T.
     #[inline]
     pub fn contact(
         &self,

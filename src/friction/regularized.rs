@@ -1,4 +1,4 @@
-//! Regularised dry friction (seed 001, eq. 4-9): the force `H(v)` and its slope `C(v) = dH/dv`
+//! Regularised dry friction (paper O, eq. 4-9): the force `H(v)` and its slope `C(v) = dH/dv`
 //! for the four approximations of `h*sgn(v)` with a transition region of width `D` around v = 0.
 //!
 //! The stiction variants add a bump of width `Da` in which the force rises to `h + ha`,

@@ -1,5 +1,5 @@
 //! `DryFrictionOscillator`: `m u'' + c u' + H(u') + k u = F(t)` with regularised dry friction
-//! (seed 001, eq. 1-9) or the exact non-smooth switch model, `F = P sin(w t)` or an input.
+//! (paper O, eq. 1-9) or the exact non-smooth switch model, `F = P sin(w t)` or an input.
 
 use super::table::{
     enum_parameter, integer_parameter, real_input, real_output, real_parameter, POSITIVE,
@@ -209,7 +209,7 @@ const VARIABLES: &[Variable] = &[
 
 pub const TABLE: ModelTable = ModelTable {
     model_identifier: "DryFrictionOscillator",
-    description: "Forced oscillator with dry friction: regularised laws (seed 001, eq. 4-9) and the exact switch model",
+    description: "Forced oscillator with dry friction: regularised laws (paper O, eq. 4-9) and the exact switch model",
     variables: VARIABLES,
     enum_types: &[LAW, FORCE_SOURCE, SOLVER],
     default_experiment: DefaultExperiment {

@@ -1,5 +1,5 @@
 //! `TransverseFriction`: a body pulled over a support that vibrates across the sliding direction,
-//! with a 2D LuGre contact (seed 000, eq. 1-30).
+//! with a 2D LuGre contact (paper T, eq. 1-30).
 
 use super::table::{
     enum_parameter, integer_parameter, real_input, real_output, real_parameter, POSITIVE,

@@ -1,4 +1,4 @@
-//! Scene O beside the paper (seed 001): how far each regularised law's steady amplitude is from
+//! Scene O beside the paper (paper O): how far each regularised law's steady amplitude is from
 //! the exact switch model as D shrinks, and the paper's Fig. 1-4 panels for one law.
 //!
 //! The paper claims the trigonometric form is "more precise" without a reference to compare
@@ -64,7 +64,7 @@ pub fn print_summary(out_dir: &Path) -> io::Result<()> {
     let mut out = io::stdout().lock();
     writeln!(
         out,
-        "DryFrictionOscillator (seed 001): steady amplitude max|u|, relative error against the exact switch model"
+        "DryFrictionOscillator (paper O): steady amplitude max|u|, relative error against the exact switch model"
     )?;
     writeln!(
         out,

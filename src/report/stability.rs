@@ -1,4 +1,4 @@
-//! The stability matrix (SPEC.md, "Numerics the user asked for": stiff and extreme cases): every
+//! The stability matrix (stiff and extreme cases): every
 //! solver of every scene against each extreme the scene has a parameter for, run through the
 //! exported fmi2* functions as a master would (src/fmi2/driver.rs), with the outcome of each run.
 //!

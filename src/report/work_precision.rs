@@ -1,4 +1,4 @@
-//! Error against run time (SPEC.md, "Numerics the user asked for"): for one scene, every solver
+//! Error against run time : for one scene, every solver
 //! it offers over a range of steps or tolerances, the relative error of the quantity a user reads
 //! (a mean force, an amplitude) against a reference run far more accurate, the run time and the
 //! right-hand-side evaluations; written as a Markdown table and a log-log SVG plot.

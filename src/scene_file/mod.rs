@@ -4,7 +4,7 @@
 //! ```toml
 //! name = "Fig4a"              # modelIdentifier of the packed FMU: fmu-out/Fig4a.fmu
 //! model = "TransverseFriction" # LongitudinalFriction, TransverseFriction or DryFrictionOscillator
-//! description = "Seed 000, Fig. 4a: ..."   # optional, else the model's
+//! description = "Paper T, Fig. 4a: ..."   # optional, else the model's
 //! law = "split"               # required: the friction law (L: law, T: slip_law, O: law)
 //! solver = "dopri5"           # required: the model's `solver`
 //! tunable = ["vd"]            # parameters that stay in the interface, start = the value below

@@ -1,4 +1,4 @@
-//! Scene O: a forced oscillator with dry friction, `m u'' + c u' + H(u') + k u = F(t)` (seed 001,
+//! Scene O: a forced oscillator with dry friction, `m u'' + c u' + H(u') + k u = F(t)` (paper O,
 //! eq. 1), `F = P sin(w t)` or an input held over each communication step.
 //!
 //! Two cores share the parameters and the outputs:

@@ -1,5 +1,5 @@
 //! Scene T: a body pulled over a support vibrating across the sliding direction, with a 2D LuGre
-//! contact (seed 000; SPEC.md "Scene T").
+//! contact (paper T).
 //!
 //! State `[x, x', z_x, lambda, w, q, y, y', z_y]`: body position and velocity, the bristle
 //! `z = N - M`, the drive stretch `lambda = vd t - x` (a state of its own so Fd does not lose
@@ -10,7 +10,7 @@
 //! five or six states, the others staying 0.
 //! Sub-steps end on communication points and vibration period boundaries (those only when
 //! FFx_mean is read, [`Trim`]); the continuous-time
-//! solvers integrate the ODE of SPEC.md, `two_phase` runs the paper's own scheme on the same
+//! solvers integrate the continuous-time ODE, `two_phase` runs the paper's own scheme on the same
 //! state, `exponential` ([`exponential`]) the exact bristle update around a midpoint step of the
 //! body, for stiff contacts.
 
@@ -128,7 +128,7 @@ impl DriveVelocity {
     }
 }
 
-/// The ODE of SPEC.md with the drive velocity `vd(t)`.
+/// The continuous-time ODE with the drive velocity `vd(t)`.
 struct Equations<'a> {
     p: &'a Params,
     vd: DriveVelocity,

@@ -79,8 +79,8 @@ def full_start_values(scene):
 
 
 def test_every_figure_and_table_has_a_scene_file():
-    """Oracle: the papers' list: seed 004 Tables 1-3 (Coulomb and Dahl columns of Table 1),
-    seed 000 Fig. 4a-8, seed 001 Fig. 1-4."""
+    """Oracle: the papers' list: paper L Tables 1-3 (Coulomb and Dahl columns of Table 1),
+    paper T Fig. 4a-8, paper O Fig. 1-4."""
     names = {tomllib.loads(f.read_text())["name"] for f in SCENES}
     expected = ({"Table1Dahl", "Table1Coulomb", "Table2", "Table3"}
                 | {f"Fig{n}" for n in ["4a", "4b", "5", "6", "7", "8"]}
@@ -156,7 +156,7 @@ def test_trimmed_fmu_computes_what_the_full_fmu_computes(packed, stem):
         assert difference <= 1e-6 * scale, (name, difference, scale)
 
 
-# Seed 004 (Leus & Gutowski 2008): Table 1 Dahl column (vc, FT_mean), Tables 2 and 3 (kt in
+# Paper L (Leus & Gutowski 2008): Table 1 Dahl column (vc, FT_mean), Tables 2 and 3 (kt in
 # N/um, FT_mean); the paper prints 3 significant digits, so within 1 %.
 TABLE_1_DAHL = [(0.324, 0.0196), (0.264, 0.0196), (0.230, 0.0181), (0.199, 0.0156),
                 (0.146, 0.0109), (0.095, 0.0066)]
@@ -176,7 +176,7 @@ VA = 0.264
     ("table3", "kt", TABLE_3, 1e6),
 ])
 def test_packed_tables_reproduce_the_paper(packed, stem, tunable, rows, scale):
-    """Oracles: seed 004's Tables 1-3 (Dahl, within 1 %) and the Coulomb closed form
+    """Oracles: paper L's Tables 1-3 (Dahl, within 1 %) and the Coulomb closed form
     FT_mean = FC (2/pi) asin(vc/va) (within 1e-6), run with each scene FMU's own experiment."""
     scene, path = packed[stem]
     tolerance = 1e-6 if stem.endswith("coulomb") else 1e-2

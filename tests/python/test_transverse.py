@@ -15,7 +15,7 @@ REF_DIR = ROOT / "tests" / "reference" / "transverse"
 F = 3000.0
 T = 1.0 / F
 
-# Paper values (SPEC.md, Scene T), used by the independent 1D implementations below.
+# Paper values (paper T), used by the independent 1D implementations below.
 M, MU, G = 0.56, 0.178, 9.81
 FC = MU * M * G
 FS = 1.1 * FC
@@ -120,7 +120,7 @@ def test_fig4b_held_body_equals_1d_lugre_at_support_velocity():
 
 
 def test_two_phase_converges_to_split_law_with_first_order():
-    """Oracle: the split-law ODE solved by dopri5 at tolerance 1e-12 (SPEC.md: the paper's scheme
+    """Oracle: the split-law ODE solved by dopri5 at tolerance 1e-12 (the paper's scheme
     tends to it with first order). Tripling the steps must cut the error of mean FFx ~3x."""
     start = {"initial": item("initial", "sliding"), "slip_law": item("slip_law", "split")}
     stop = 30 * T
@@ -214,7 +214,7 @@ def test_drive_input_matches_prescribed_drive():
     ("vd", float("nan"), "vd = NaN"),
 ])
 def test_bad_parameters_are_refused_with_a_message(name, value, phrase):
-    """Oracle: the ranges of SPEC.md; the FMU must refuse the value and log why."""
+    """Oracle: the variable table's ranges; the FMU must refuse the value and log why."""
     messages = []
 
     def logger(env, instance, status, category, message):

@@ -93,7 +93,7 @@ const LAMBDA: usize = 6;
 const Q: usize = 7;
 const W: usize = 8;
 
-/// Scene T's ODE (SPEC.md "Scene T", continuous-time limit) for a prescribed drive velocity `vd`,
+/// Scene T's ODE (paper T, continuous-time limit) for a prescribed drive velocity `vd`,
 /// built on the scene's public `Params::contact` and `Params::drive_force`; the scene's own
 /// `Equations` is private, so it is restated here and checked against the scene in `main`.
 pub struct TransverseOde {

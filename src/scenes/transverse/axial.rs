@@ -1,6 +1,6 @@
 //! Scene T without vibration (va or eta fixed at 0 by a scene file): the support point M stays
 //! put, nothing pushes the body or the bristle across, so y, y' and z_y stay 0 and the contact is
-//! 1D LuGre along x (SPEC.md, Fig. 4a). Both slip laws agree there: v2 = -e.v_M = 0, so
+//! 1D LuGre along x (paper T, Fig. 4a). Both slip laws agree there: v2 = -e.v_M = 0, so
 //! |v1|/g(v1) + |v2|/g(v2) = |v1 + v2|/g(v1 + v2) = |x'|/g(x'), and with e = (sgn z_x, 0)
 //! `FFx = FF e_x = kt z_x + ht(x') z_x' + hv x'`, `z_x' = x' - |x'|/g(x') z_x`, the power on
 //! the contact FF (v1 + v2) = FFx x'.

@@ -1,8 +1,8 @@
-//! The paper's own algorithm (seed 000, eq. 11-29, Fig. 2-3), kept as the paper writes it: per
+//! The paper's own algorithm (paper T, eq. 11-29, Fig. 2-3), kept as the paper writes it: per
 //! step the body moves first (N -> N1', M slides along M N1'), then the support carries M
 //! (M1' -> M1''), each phase updating the deflection with an explicit Euler step of eq. 3.
 //!
-//! Our readings where the paper is silent (SPEC.md): the force uses `sdot = (s1 - s)/dt` and
+//! Our readings where the paper is silent: the force uses `sdot = (s1 - s)/dt` and
 //! `vr = vr1 + vr2`; the body moves by semi-implicit Euler under the forces of the previous step;
 //! a deflection that an Euler update drives below zero puts M on the other side of N.
 //! The mean of FFx sums FFx at the step ends times the step, the integral form of eq. 30.

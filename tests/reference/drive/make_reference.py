@@ -9,7 +9,7 @@ Run:    python3 tests/reference/drive/make_reference.py      (needs numpy, scipy
 Takes:  about a minute on one core.
 Writes: reference.csv next to this file: t, v_nut, x_nut, Fd, x every 5e-5 s over [0, 0.04] s.
 
-The case: both models at their defaults (SPEC.md scene T; DriveTrain's illustrative stage),
+The case: both models at their defaults (TransverseFriction's defaults; DriveTrain's illustrative stage),
 except no support vibration (va = 0). At t = 0 everything is at rest and the motor is switched
 on at V = 1.58 V. The nut is the far end of the drive spring: Fd = kd (x_nut - x) + hd (v_nut - x')
 is the spring's pull on the body and the load on the nut. With va = 0 the contact is classical
@@ -51,7 +51,7 @@ M_NUT = 0.05
 R_SCREW = LEAD / (2.0 * math.pi * N)
 J_EFF = J + M_NUT * R_SCREW**2 / EFF
 
-# TransverseFriction defaults (SPEC.md), va = 0.
+# TransverseFriction defaults, va = 0.
 M = 0.56
 FC = 0.178 * M * 9.81
 FS = 1.1 * FC

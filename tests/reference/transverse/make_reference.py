@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Reference outputs for TransverseFriction: an independent implementation of the ODE of SPEC.md
+"""Reference outputs for TransverseFriction: an independent implementation of the continuous-time ODE
 ("Scene T", continuous-time limit) solved with scipy's Radau IIA (order 5, L-stable) at
 rtol = 1e-11.
 
@@ -30,7 +30,7 @@ from scipy.integrate import solve_ivp
 
 HERE = pathlib.Path(__file__).resolve().parent
 
-# Paper values (SPEC.md, section 3 of the paper), SI units.
+# Paper values (section 3 of paper T), SI units.
 M = 0.56
 MU = 0.178
 G = 9.81
