@@ -32,11 +32,12 @@ pub fn interpolates_inputs(table: &variable::ModelTable) -> bool {
 #[cfg(test)]
 mod tests {
     use super::values::{check_value, ValueSet};
-    use super::variable::{Causality, Kind};
+    use super::variable::{Causality, Kind, NO_UNIT, UNITS};
     use super::MODELS;
 
     /// Every table is self-consistent: unique names and value references, start values inside
-    /// their ranges, enumeration defaults that name an item, output dependencies on inputs.
+    /// their ranges, enumeration defaults that name an item, output dependencies on inputs,
+    /// units declared in the unit table (the XML writer drops a unit it cannot find).
     #[test]
     fn every_table_is_consistent() {
         for table in MODELS {
@@ -56,6 +57,14 @@ mod tests {
                         check_value(table, a, start),
                         Ok(()),
                         "{}: start of {}",
+                        table.model_identifier,
+                        a.name
+                    );
+                }
+                if let Kind::Real { unit, .. } = a.kind {
+                    assert!(
+                        unit == NO_UNIT || UNITS.iter().any(|u| u.name == unit),
+                        "{}: {} has unit {unit:?}, not in UNITS",
                         table.model_identifier,
                         a.name
                     );

@@ -76,13 +76,15 @@ impl EnumType {
     }
 }
 
-/// A unit with its SI base-unit exponents (kg, m, s, rad as FMI names them).
+/// A unit with its SI base-unit exponents (kg, m, s, A, rad as FMI names them).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Unit {
     pub name: &'static str,
     pub kg: i32,
     pub m: i32,
     pub s: i32,
+    /// Ampere.
+    pub a: i32,
     pub rad: i32,
 }
 
@@ -128,6 +130,7 @@ pub const UNITS: &[Unit] = &[
         kg: 0,
         m: 0,
         s: 1,
+        a: 0,
         rad: 0,
     },
     Unit {
@@ -135,6 +138,7 @@ pub const UNITS: &[Unit] = &[
         kg: 0,
         m: 1,
         s: 0,
+        a: 0,
         rad: 0,
     },
     Unit {
@@ -142,6 +146,7 @@ pub const UNITS: &[Unit] = &[
         kg: 0,
         m: 1,
         s: -1,
+        a: 0,
         rad: 0,
     },
     Unit {
@@ -149,6 +154,7 @@ pub const UNITS: &[Unit] = &[
         kg: 0,
         m: 1,
         s: -2,
+        a: 0,
         rad: 0,
     },
     Unit {
@@ -156,6 +162,7 @@ pub const UNITS: &[Unit] = &[
         kg: 1,
         m: 0,
         s: 0,
+        a: 0,
         rad: 0,
     },
     Unit {
@@ -163,6 +170,7 @@ pub const UNITS: &[Unit] = &[
         kg: 1,
         m: 1,
         s: -2,
+        a: 0,
         rad: 0,
     },
     Unit {
@@ -170,6 +178,7 @@ pub const UNITS: &[Unit] = &[
         kg: 1,
         m: 0,
         s: -2,
+        a: 0,
         rad: 0,
     },
     Unit {
@@ -177,6 +186,7 @@ pub const UNITS: &[Unit] = &[
         kg: 1,
         m: 2,
         s: -2,
+        a: 0,
         rad: 0,
     },
     Unit {
@@ -184,6 +194,7 @@ pub const UNITS: &[Unit] = &[
         kg: 1,
         m: 0,
         s: -1,
+        a: 0,
         rad: 0,
     },
     Unit {
@@ -191,6 +202,7 @@ pub const UNITS: &[Unit] = &[
         kg: 0,
         m: 0,
         s: -1,
+        a: 0,
         rad: 0,
     },
     Unit {
@@ -198,6 +210,7 @@ pub const UNITS: &[Unit] = &[
         kg: 0,
         m: 0,
         s: 0,
+        a: 0,
         rad: 1,
     },
     Unit {
@@ -205,6 +218,7 @@ pub const UNITS: &[Unit] = &[
         kg: 0,
         m: 0,
         s: -1,
+        a: 0,
         rad: 1,
     },
     Unit {
@@ -212,6 +226,7 @@ pub const UNITS: &[Unit] = &[
         kg: 1,
         m: 2,
         s: 0,
+        a: 0,
         rad: 0,
     },
     Unit {
@@ -219,6 +234,7 @@ pub const UNITS: &[Unit] = &[
         kg: 1,
         m: 2,
         s: -1,
+        a: 0,
         rad: -1,
     },
     Unit {
@@ -226,7 +242,56 @@ pub const UNITS: &[Unit] = &[
         kg: 0,
         m: 0,
         s: 0,
+        a: 0,
         rad: 0,
+    },
+    Unit {
+        name: "V",
+        kg: 1,
+        m: 2,
+        s: -3,
+        a: -1,
+        rad: 0,
+    },
+    Unit {
+        name: "Ohm",
+        kg: 1,
+        m: 2,
+        s: -3,
+        a: -2,
+        rad: 0,
+    },
+    Unit {
+        name: "H",
+        kg: 1,
+        m: 2,
+        s: -2,
+        a: -2,
+        rad: 0,
+    },
+    Unit {
+        name: "A",
+        kg: 0,
+        m: 0,
+        s: 0,
+        a: 1,
+        rad: 0,
+    },
+    Unit {
+        name: "N.m/A",
+        kg: 1,
+        m: 2,
+        s: -2,
+        a: -1,
+        rad: 0,
+    },
+    Unit {
+        name: "V.s/rad",
+        kg: 1,
+        m: 2,
+        s: -2,
+        a: -1,
+        rad: -1,
     },
 ];
 

@@ -208,6 +208,7 @@ impl<'a> Interface<'a> {
                             kg: u.kg,
                             m: u.m,
                             s: u.s,
+                            a: u.a,
                             rad: u.rad,
                             factor: (u.name == "%").then_some(0.01),
                         },

@@ -88,6 +88,8 @@ pub struct BaseUnit {
     pub m: i32,
     #[serde(rename = "@s", skip_serializing_if = "is_zero")]
     pub s: i32,
+    #[serde(rename = "@A", skip_serializing_if = "is_zero")]
+    pub a: i32,
     #[serde(rename = "@rad", skip_serializing_if = "is_zero")]
     pub rad: i32,
     #[serde(rename = "@factor", skip_serializing_if = "Option::is_none")]
