@@ -1,5 +1,5 @@
 //! Random FMI call sequences, in-process through the exported `fmi2*` functions (via the safe
-//! driver), over all three models: the FMU must survive every one.
+//! driver), over every model: the FMU must survive every one.
 //!
 //! Each sequence instantiates one or two instances (sometimes with wrong arguments) and makes up
 //! to 60 calls: any exported function in any state, value references known and unknown, values

@@ -143,6 +143,10 @@ fn main() -> ExitCode {
                 out = Some(PathBuf::from(&args[i + 1]));
                 i += 1;
             }
+            "--out" => {
+                eprintln!("--out needs a directory\n{USAGE}");
+                return ExitCode::from(2);
+            }
             "-h" | "--help" => {
                 println!("{USAGE}");
                 return ExitCode::SUCCESS;

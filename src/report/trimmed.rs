@@ -45,8 +45,10 @@ pub struct Row {
     pub max_difference: f64,
 }
 
+/// An item the cases below name; a misspelt one is a bug in this file, never user input.
 fn item(e: &EnumType, name: &str) -> f64 {
-    f64::from(e.value_of(name).unwrap_or(1))
+    let value = e.value_of(name);
+    f64::from(value.unwrap_or_else(|| panic!("{} has no item {name}", e.name)))
 }
 
 fn outputs(table: &ModelTable) -> impl Iterator<Item = u32> + '_ {

@@ -33,8 +33,11 @@ pub struct RawExperiment {
 pub fn parse(file: &str, text: &str) -> Result<Raw, String> {
     toml::from_str(text).map_err(|e: toml::de::Error| {
         let message = e.message().trim_end();
+        // A missing key is reported with the span of the table it is missing from, from the
+        // file's start for a top-level key: no line to point at then.
+        let whole = message.starts_with("missing") && e.span().is_some_and(|s| s.start == 0);
         match e.span().and_then(|span| text.get(..span.start)) {
-            Some(before) if !text.is_empty() && before.len() < text.len() => {
+            Some(before) if !whole && !text.is_empty() && before.len() < text.len() => {
                 let line = before.matches('\n').count() + 1;
                 let content = text.lines().nth(line - 1).unwrap_or("").trim();
                 format!("{file}, line {line} (`{content}`): {message}")
