@@ -85,7 +85,11 @@ impl ValueSet {
 /// The error says what was expected, for the FMI logger.
 pub fn check_value(table: &ModelTable, var: &Variable, value: f64) -> Result<(), String> {
     if !matches!(var.kind, Kind::Real { .. }) && (!value.is_finite() || value.fract() != 0.0) {
-        return Err(format!("{} = {value}: expected a whole number", var.name));
+        return Err(format!(
+            "{} = {}: expected a whole number",
+            var.name,
+            number(value)
+        ));
     }
     match var.kind {
         Kind::Real { min, max, unit, .. } => {
@@ -94,8 +98,9 @@ pub fn check_value(table: &ModelTable, var: &Variable, value: f64) -> Result<(),
             }
             if value < min || value > max {
                 return Err(format!(
-                    "{} = {value} is out of range: expected {} ({})",
+                    "{} = {} is out of range: expected {} ({})",
                     var.name,
+                    number(value),
                     range_text(var.name, min, max),
                     if unit.is_empty() { "no unit" } else { unit }
                 ));
@@ -128,18 +133,29 @@ pub fn check_value(table: &ModelTable, var: &Variable, value: f64) -> Result<(),
     Ok(())
 }
 
+/// A number as a person reads it: plain between 1e-4 and 1e6, else in exponent form (so 1e-300
+/// is not three hundred zeros).
+pub fn number(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e6).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 fn range_text(name: &str, min: f64, max: f64) -> String {
+    let (lo, hi) = (number(min), number(max));
     if min == f64::MIN_POSITIVE {
         return if max.is_finite() {
-            format!("0 < {name} <= {max}")
+            format!("0 < {name} <= {hi}")
         } else {
             format!("{name} > 0")
         };
     }
     match (min.is_finite(), max.is_finite()) {
-        (true, true) => format!("{min} <= {name} <= {max}"),
-        (true, false) => format!("{name} >= {min}"),
-        (false, true) => format!("{name} <= {max}"),
+        (true, true) => format!("{lo} <= {name} <= {hi}"),
+        (true, false) => format!("{name} >= {lo}"),
+        (false, true) => format!("{name} <= {hi}"),
         (false, false) => format!("{name} finite"),
     }
 }

@@ -24,7 +24,7 @@ fn escape(text: &str) -> String {
 /// A value as the page shows it; an enumeration's item with the items it could have been.
 fn value_text(table: &ModelTable, var: &Variable, value: f64) -> String {
     match var.kind {
-        Kind::Real { .. } => value.to_string(),
+        Kind::Real { .. } => crate::interface::values::number(value),
         Kind::Integer { .. } => (value as i64).to_string(),
         Kind::Enumeration { type_name, .. } => {
             let enum_type = table.enum_type(type_name);

@@ -33,7 +33,7 @@ impl SceneFile {
     pub fn value_text(&self, var: &Variable) -> String {
         match var.kind {
             Kind::Enumeration { .. } => self.values.item(var.value_reference).to_string(),
-            _ => self.values.real(var.value_reference).to_string(),
+            _ => crate::interface::values::number(self.values.real(var.value_reference)),
         }
     }
 
