@@ -152,8 +152,9 @@ impl<'a> Equations<'a> {
         }
     }
 
-    /// `Params::support_velocity`, remembered for one time.
-    #[inline]
+    /// `Params::support_velocity`, remembered for one time. Always inlined, with its cos: the
+    /// compiler leaves both as calls otherwise, which cost 3 % of a step.
+    #[inline(always)]
     fn support_velocity(&self, t: f64) -> Vector2<f64> {
         let (t_last, v_last) = self.last_support.get();
         if t == t_last {
