@@ -263,10 +263,12 @@ impl Dense {
     }
 
     /// The state at `t + theta h`.
-    fn at(&self, n: usize, theta: f64, out: &mut [f64; MAX_DIM]) {
+    fn at(&self, theta: f64, out: &mut [f64; MAX_DIM]) {
         let u = 1.0 - theta;
         let r = &self.r;
-        for j in 0..n {
+        // Whole rows (past the dimension they hold 0): a loop of constant length, which the
+        // compiler unrolls and runs two states at a time.
+        for j in 0..MAX_DIM {
             out[j] = r[0][j] + theta * (r[1][j] + u * (r[2][j] + theta * (r[3][j] + u * r[4][j])));
         }
         if !self.decaying.is_empty() {
@@ -454,7 +456,7 @@ impl Dopri5 {
         let n = ode.dim().min(MAX_DIM);
         let mut state = [0.0; MAX_DIM];
         let mut sw = [0.0; MAX_SWITCHES];
-        dense.at(n, theta, &mut state);
+        dense.at(theta, &mut state);
         ode.switches(t + theta * h, &state[..n], &mut sw);
         sw[i]
     }
