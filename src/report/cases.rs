@@ -67,16 +67,7 @@ pub fn longitudinal() -> Case {
         short_title: "L: Dahl, vc 0.146 m/s, error of FT_mean",
         quantity: "FT_mean",
         settings,
-        reference: (
-            Setting {
-                solver: "dopri5",
-                knob: Knob::Tolerance(1e-13),
-            },
-            Setting {
-                solver: "dopri5",
-                knob: Knob::Tolerance(1e-12),
-            },
-        ),
+        reference: reference("dopri5", 1e-13, 1e-12),
         run: Box::new(run),
     }
 }
@@ -129,16 +120,7 @@ pub fn transverse(slip_law: &'static str) -> Case {
         },
         quantity: "FFx_mean",
         settings,
-        reference: (
-            Setting {
-                solver: "dopri5",
-                knob: Knob::Tolerance(1e-12),
-            },
-            Setting {
-                solver: "dopri5",
-                knob: Knob::Tolerance(1e-11),
-            },
-        ),
+        reference: reference("dopri5", 1e-12, 1e-11),
         run: Box::new(run),
     }
 }
@@ -180,16 +162,7 @@ pub fn oscillator() -> Case {
         short_title: "O: trigonometric, paper's case: error of u_amplitude",
         quantity: "u_amplitude",
         settings,
-        reference: (
-            Setting {
-                solver: "radau5",
-                knob: Knob::Tolerance(1e-13),
-            },
-            Setting {
-                solver: "radau5",
-                knob: Knob::Tolerance(1e-12),
-            },
-        ),
+        reference: reference("radau5", 1e-13, 1e-12),
         run: Box::new(run),
     }
 }
@@ -201,4 +174,14 @@ pub fn all() -> Vec<Case> {
         transverse("total"),
         oscillator(),
     ]
+}
+
+/// The reference run of a case (`solver` at `rtol`) and the one a decade looser that estimates
+/// its own error.
+fn reference(solver: &'static str, rtol: f64, looser: f64) -> (Setting, Setting) {
+    let at = |rtol| Setting {
+        solver,
+        knob: Knob::Tolerance(rtol),
+    };
+    (at(rtol), at(looser))
 }
