@@ -47,17 +47,24 @@ pub struct Contact {
     pub zdot: Vector2<f64>,
     /// Magnitude of the friction force FF (eq. 2), N.
     pub ff: f64,
+    /// FF's two parts: the spring kt z, and the damping ht sdot + hv vr along e.
+    elastic: Vector2<f64>,
+    damping: f64,
 }
 
 impl Contact {
-    /// FFx = FF cos(beta): the force resisting +x.
+    /// FFx = FF cos(beta): the force resisting +x. Written as kt z_x + damping e_x rather than
+    /// FF e_x: the spring part is ready as soon as z is, which keeps the right-hand side's
+    /// longest chain of dependent operations short.
+    #[inline]
     pub fn ffx(&self) -> f64 {
-        self.ff * self.e.x
+        self.elastic.x + self.damping * self.e.x
     }
 
     /// FFy = FF sin(beta): the y-force acting on the body (M - N = s (-cos beta, sin beta)).
+    #[inline]
     pub fn ffy(&self) -> f64 {
-        -self.ff * self.e.y
+        -(self.elastic.y + self.damping * self.e.y)
     }
 
     /// beta, the direction of the deflection (eq. 26-29).
@@ -91,21 +98,25 @@ impl LuGre2d {
     }
 
     /// Slip rate |v|/g(v) (1/s) of eq. 3, written with one division: it runs in every
-    /// right-hand side of scene T.
+    /// right-hand side of scene T. The division takes only the Stribeck denominator, which
+    /// outside the narrow band is a constant the processor has ready (the branch in `stribeck`
+    /// is predicted), so it does not wait on v: |v| kt / d would put it on the right-hand
+    /// side's longest chain.
     #[inline]
     pub fn slip_rate(&self, v: f64) -> f64 {
-        v.abs() * self.kt / (self.fc + (self.fs - self.fc) * self.stribeck(v))
+        v.abs() * (self.kt / (self.fc + (self.fs - self.fc) * self.stribeck(v)))
     }
 
     /// Slip rate of the bristle for the radial rates v1 (body) and v2 (support).
     #[inline]
     pub fn slip(&self, law: SlipLaw, v1: f64, v2: f64) -> f64 {
         match law {
-            // |v1| kt/d1 + |v2| kt/d2 over one division.
+            // |v1| kt/d1 + |v2| kt/d2 over one division, which (as in `slip_rate`) takes the
+            // denominators alone and so does not wait on v1 and v2.
             SlipLaw::Split => {
                 let d1 = self.fc + (self.fs - self.fc) * self.stribeck(v1);
                 let d2 = self.fc + (self.fs - self.fc) * self.stribeck(v2);
-                self.kt * (v1.abs() * d2 + v2.abs() * d1) / (d1 * d2)
+                (self.kt / (d1 * d2)) * (v1.abs() * d2 + v2.abs() * d1)
             }
             SlipLaw::Total => self.slip_rate(v1 + v2),
         }
@@ -114,7 +125,19 @@ impl LuGre2d {
     /// FF = kt s + ht(vr) sdot + hv vr (eq. 2).
     #[inline]
     pub fn force(&self, s: f64, sdot: f64, vr: f64) -> f64 {
-        self.kt * s + self.ht(vr) * sdot + self.hv * vr
+        self.kt * s + self.damping(sdot, vr)
+    }
+
+    /// The damping part of FF, ht(vr) sdot + hv vr. Outside the Stribeck band ht is 0 and the
+    /// branch (predicted) skips sdot, so the force does not wait on the bristle rate.
+    #[inline]
+    fn damping(&self, sdot: f64, vr: f64) -> f64 {
+        let ht = self.ht(vr);
+        if ht != 0.0 {
+            ht * sdot + self.hv * vr
+        } else {
+            self.hv * vr
+        }
     }
 
     /// The contact for bristle `z`, body velocity `v_body` and velocity `v_m` of the support point
@@ -131,14 +154,17 @@ impl LuGre2d {
         let (e, v1, v2) = radial_rates(z, v_body, v_m);
         let w = v_body - v_m;
         let zdot = w - self.slip(law, v1, v2) * z;
-        let ff = self.force(s, e.dot(&zdot), v1 + v2);
+        let vr = v1 + v2;
+        let damping = self.damping(e.dot(&zdot), vr);
         Contact {
             e,
             s,
             v1,
             v2,
             zdot,
-            ff,
+            ff: self.kt * s + damping,
+            elastic: self.kt * z,
+            damping,
         }
     }
 }
@@ -151,8 +177,16 @@ pub fn radial_rates(
     v_body: Vector2<f64>,
     v_m: Vector2<f64>,
 ) -> (Vector2<f64>, f64, f64) {
-    let e = direction(z, v_body - v_m);
-    (e, e.dot(&v_body), -e.dot(&v_m))
+    let s = z.norm();
+    if s > 0.0 {
+        // The dot products with z wait only for z, not for 1/s: one product after it instead
+        // of two (this runs in every right-hand side of scene T).
+        let inv = 1.0 / s;
+        (z * inv, z.dot(&v_body) * inv, -z.dot(&v_m) * inv)
+    } else {
+        let e = direction(z, v_body - v_m);
+        (e, e.dot(&v_body), -e.dot(&v_m))
+    }
 }
 
 /// The unit vector of `z`; for `z = 0` the one the bristle is about to take, along the relative
@@ -239,6 +273,36 @@ mod tests {
         assert!((c.zdot.y - zdot).abs() < 1e-20);
         // The y-force on the body is -F (FFy = -FF e_y).
         assert!((c.ffy() + f).abs() <= 1e-12 * f.abs());
+    }
+
+    /// Oracle: eq. 2 with FFx = FF cos(beta) and FFy = FF sin(beta), whichever way the force is
+    /// summed; in and out of the Stribeck band, at s = 0 and in the plane.
+    #[test]
+    fn force_components_are_ff_along_the_bristle() {
+        let l = LuGre2d { hv: 0.3, ..law() };
+        for (z, vb, vm) in [
+            ((1e-8, 5e-9), (3e-7, 1e-7), (0.0, -2e-7)),
+            ((-4e-9, 1.1e-8), (5e-4, -2e-5), (0.0, 1.4e-3)),
+            ((0.0, 0.0), (2e-7, 0.0), (0.0, 1e-7)),
+            ((0.0, 0.0), (3e-4, 0.0), (0.0, -1e-3)),
+        ] {
+            for slip in [SlipLaw::Split, SlipLaw::Total] {
+                let c = l.contact(
+                    slip,
+                    Vector2::new(z.0, z.1),
+                    Vector2::new(vb.0, vb.1),
+                    Vector2::new(vm.0, vm.1),
+                );
+                let ff = l.kt * c.s + l.ht(c.v1 + c.v2) * c.e.dot(&c.zdot) + l.hv * (c.v1 + c.v2);
+                assert!(
+                    (c.ff - ff).abs() <= 1e-12 * ff.abs(),
+                    "{z:?}: {} vs {ff}",
+                    c.ff
+                );
+                assert!((c.ffx() - ff * c.e.x).abs() <= 1e-12 * ff.abs(), "{z:?}");
+                assert!((c.ffy() + ff * c.e.y).abs() <= 1e-12 * ff.abs(), "{z:?}");
+            }
+        }
     }
 
     /// The slip term is continuous at z = 0 and the split and total laws agree when only one

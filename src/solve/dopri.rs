@@ -357,23 +357,29 @@ impl Dopri5 {
         // compiler may not drop 0 * k itself) and the sums run row by row.
         macro_rules! stage {
             ($s:literal) => {{
-                let mut acc = [0.0; MAX_DIM];
-                for r in 0..$s {
+                // y0 + h sum a_r k_r with the last stage's term added last, and for the decaying
+                // components the way back from u folded in before it: only that one product
+                // and sum wait on the previous right-hand side.
+                let mut acc = y0;
+                for r in 0..$s - 1 {
                     let a = A[$s][r];
                     if a != 0.0 {
+                        let ha = h * a;
                         for j in 0..MAX_DIM {
-                            acc[j] += a * tr.k[r][j];
+                            acc[j] += ha * tr.k[r][j];
                         }
                     }
                 }
+                let ha_last = h * A[$s][$s - 1];
                 for j in 0..MAX_DIM {
-                    tmp[j] = y0[j] + h * acc[j];
+                    tmp[j] = acc[j] + ha_last * tr.k[$s - 1][j];
                 }
                 if lawson {
-                    // tmp holds u there: back to y.
+                    // acc holds u there: back to y, y = c + u / g_s.
                     let back = 1.0 / tr.g[$s];
+                    let back_last = back * ha_last;
                     for (m, j) in decaying.iter().enumerate() {
-                        tmp[j] = tr.shift[m] + tmp[j] * back;
+                        tmp[j] = (tr.shift[m] + acc[j] * back) + back_last * tr.k[$s - 1][j];
                     }
                 }
                 let (_, rest) = tr.k.split_at_mut($s);
