@@ -50,6 +50,38 @@ const ZY: usize = 8;
 /// over. exp(-BAND^2) ~ 1e-7 outside.
 const BAND: f64 = 4.0;
 
+/// Where else, in multiples of vs, steps end inside the Stribeck band of a rate whose absolute
+/// value has a kink (v1 and v2 for the split law, v1 + v2 for the total law), when the
+/// tolerance asks for it ([`RESOLVE_BAND_RTOL`]). Inside the band g(v) rises to FS over a time
+/// of about vs / |v'| (a tenth of a microsecond at the paper's values), and the slip |v|/g(v)
+/// has a bump there that steps ending only on v = 0 span: the stages miss the bump and so does
+/// the error estimate. That costs the split law about 1e-7 of FFx_mean whatever the tolerance;
+/// with steps ending also at |v| = vs and 3 vs, rtol 1e-7 gives 9e-9 (benches/transverse.py).
+const BAND_POINTS: [f64; 2] = [1.0, 3.0];
+
+/// The tolerance at and below which the adaptive solvers resolve the Stribeck band
+/// ([`BAND_POINTS`]). Above it the band's unresolved bump is below the tolerance's own error,
+/// and the extra step ends would cost half as many steps again (split law, rtol 1e-6).
+const RESOLVE_BAND_RTOL: f64 = 1e-7;
+
+/// Writes, from `out[k]`, the switching functions of a rate `v` whose absolute value has a
+/// kink: v itself and, when `resolve`, v -+ m vs for [`BAND_POINTS`]. Returns the next free
+/// index.
+#[inline]
+fn kink_switches(v: f64, vs: f64, resolve: bool, out: &mut [f64; MAX_SWITCHES], k: usize) -> usize {
+    out[k] = v;
+    if !resolve {
+        return k + 1;
+    }
+    let mut k = k + 1;
+    for m in BAND_POINTS {
+        out[k] = v - m * vs;
+        out[k + 1] = v + m * vs;
+        k += 2;
+    }
+    k
+}
+
 /// Everything the equations need, fixed at build time.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {
@@ -136,6 +168,8 @@ impl DriveVelocity {
 struct Equations<'a> {
     p: &'a Params,
     vd: DriveVelocity,
+    /// Steps also end inside the Stribeck band ([`BAND_POINTS`]).
+    resolve_band: bool,
     /// The support velocity at the last time asked for: dopri5's last two stages and the
     /// switching functions after them all fall on the step's end, and the cos is a fifth of a
     /// right-hand side.
@@ -143,10 +177,11 @@ struct Equations<'a> {
 }
 
 impl<'a> Equations<'a> {
-    fn new(p: &'a Params, vd: DriveVelocity) -> Self {
+    fn new(p: &'a Params, vd: DriveVelocity, resolve_band: bool) -> Self {
         Equations {
             p,
             vd,
+            resolve_band,
             // NaN: equal to no time.
             last_support: Cell::new((f64::NAN, Vector2::zeros())),
         }
@@ -220,20 +255,18 @@ impl Equations<'_> {
     #[inline]
     fn switches_of(&self, v1: f64, v2: f64, out: &mut [f64; MAX_SWITCHES]) -> usize {
         let vr = v1 + v2;
-        let band = BAND * self.p.law.vs;
+        let vs = self.p.law.vs;
+        let band = BAND * vs;
         out[0] = vr - band;
         out[1] = vr + band;
+        let resolve = self.resolve_band;
         match self.p.slip {
             // |v1| and |v2| have kinks.
             SlipLaw::Split => {
-                out[2] = v1;
-                out[3] = v2;
-                4
+                let k = kink_switches(v1, vs, resolve, out, 2);
+                kink_switches(v2, vs, resolve, out, k)
             }
-            SlipLaw::Total => {
-                out[2] = vr;
-                3
-            }
+            SlipLaw::Total => kink_switches(vr, vs, resolve, out, 2),
         }
     }
 }
@@ -504,11 +537,17 @@ impl Transverse {
     /// Advances over one sub-step `[t0, t1]` that lies within one period.
     fn substep(&mut self, t0: f64, t1: f64, vd: DriveVelocity) -> Result<(), String> {
         self.y[Q] = 0.0;
-        let planar = Equations::new(&self.p, vd);
+        let resolve_band = match &self.solver {
+            Solver::Dopri5(d) => d.rtol <= RESOLVE_BAND_RTOL,
+            Solver::Radau5(r) => r.rtol <= RESOLVE_BAND_RTOL,
+            _ => false,
+        };
+        let planar = Equations::new(&self.p, vd, resolve_band);
         let axial = axial::Axial {
             p: &self.p,
             vd,
             dim: self.trim.dim(),
+            resolve_band,
         };
         let eq: &dyn Switching = if self.trim.axial { &axial } else { &planar };
         match &mut self.solver {

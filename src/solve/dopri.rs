@@ -15,7 +15,7 @@
 use super::{Integrator, Ode, Work, MAX_DIM};
 
 /// The most switching functions an ODE may report.
-pub const MAX_SWITCHES: usize = 6;
+pub const MAX_SWITCHES: usize = 12;
 
 /// An ODE whose right-hand side is smooth except where one of a few functions of (t, y) is zero.
 pub trait Switching: Ode {
@@ -471,7 +471,10 @@ impl Dopri5 {
     /// The first switch the last accepted step (from `t_prev`, length `h_prev`, start state
     /// `y_prev`, stages in `tr`) predicts to change sign within the coming step `h`, and the
     /// step that ends on it. A line through the switch values at the ends of the last step
-    /// picks the candidates (free); the dense output extrapolated past the step places them.
+    /// picks the candidates (free); the dense output extrapolated past the step places them,
+    /// nearest along the line first, so that each later candidate costs one evaluation at the
+    /// zero found so far (switches in a cluster, as the points inside a Stribeck band, are
+    /// due in the same step).
     #[allow(clippy::too_many_arguments)]
     fn predict<S: Switching + ?Sized>(
         ode: &S,
@@ -484,27 +487,38 @@ impl Dopri5 {
         count: usize,
         h: f64,
     ) -> Option<(usize, f64)> {
-        let mut best: Option<(usize, f64)> = None;
-        let mut dense = None;
-        let n = ode.dim().min(MAX_DIM);
         let r = h / h_prev;
+        // The candidates heading for zero and due within 1.5 steps along the line, by when.
+        let mut due = [(0usize, 0.0f64); MAX_SWITCHES];
+        let mut len = 0;
         for i in 0..count {
             let (s0, s1) = (sw_prev[i], sw_now[i]);
             let slope = s1 - s0;
-            // Heading for zero and due within 1.5 steps along the line.
             if s1 == 0.0 || slope == 0.0 || (s1 > 0.0) == (slope > 0.0) || -s1 / slope > 1.5 * r {
                 continue;
             }
+            due[len] = (i, -s1 / slope);
+            len += 1;
+        }
+        let due = &mut due[..len];
+        due.sort_unstable_by(|a, b| a.1.total_cmp(&b.1));
+        let n = ode.dim().min(MAX_DIM);
+        let mut best: Option<(usize, f64)> = None;
+        let mut dense = None;
+        // The fraction of the coming step searched: all of it, then up to the first zero found.
+        let mut reach = 1.0;
+        for &(i, _) in due.iter() {
             let d = dense.get_or_insert_with(|| Dense::new(n, &y_prev[..n], tr, h_prev));
-            let switch_at = |x: f64| Self::switch_on(ode, t_prev, d, h_prev, i, 1.0 + x * r);
+            let switch_at =
+                |x: f64| Self::switch_on(ode, t_prev, d, h_prev, i, 1.0 + x * reach * r);
+            let s1 = sw_now[i];
             let end = switch_at(1.0);
             if !crossed(s1, end) {
                 continue;
             }
-            let x = super::root::first_zero(switch_at, s1, end, 1e-7, 100);
-            if best.is_none_or(|(_, b)| x * h < b) {
-                best = Some((i, x * h));
-            }
+            let x = reach * super::root::first_zero(switch_at, s1, end, 1e-7, 100);
+            reach = x;
+            best = Some((i, x * h));
         }
         best
     }

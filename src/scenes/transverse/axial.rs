@@ -8,7 +8,7 @@
 //! The state is the general one's first `dim` entries, `[x, x', z_x, lambda, w, q]` (q only when
 //! the mean force is read), so the scene's outputs read it unchanged.
 
-use super::{DriveVelocity, Params, BAND, LAMBDA, Q, VX, W, X, ZX};
+use super::{kink_switches, DriveVelocity, Params, BAND, LAMBDA, Q, VX, W, X, ZX};
 use crate::solve::dopri::{Switching, MAX_SWITCHES};
 use crate::solve::Ode;
 
@@ -17,6 +17,8 @@ pub struct Axial<'a> {
     pub vd: DriveVelocity,
     /// 5 without the force integral q, 6 with it.
     pub dim: usize,
+    /// Steps also end inside the Stribeck band, as in the plane.
+    pub resolve_band: bool,
 }
 
 impl Axial<'_> {
@@ -58,14 +60,14 @@ impl Ode for Axial<'_> {
 
 impl Switching for Axial<'_> {
     /// The Stribeck band's edges and the kink of |x'| (the general scene's v1 = e_x x' also
-    /// changes sign where z_x does, which is no kink here).
+    /// changes sign where z_x does, which is no kink here), and the points inside the band the
+    /// plane resolves.
     fn switches(&self, _t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
         let v = self.velocity(y);
-        let band = BAND * self.p.law.vs;
-        out[0] = v - band;
-        out[1] = v + band;
-        out[2] = v;
-        3
+        let vs = self.p.law.vs;
+        out[0] = v - BAND * vs;
+        out[1] = v + BAND * vs;
+        kink_switches(v, vs, self.resolve_band, out, 2)
     }
 
     /// z_x relaxes at the slip rate |x'|/g(x'), taken exactly within each dopri5 step as in the

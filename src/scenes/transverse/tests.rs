@@ -82,9 +82,10 @@ fn held_body_matches_scene_l_lugre() {
     );
 }
 
-/// Oracle: the dopri5 solution at rtol 1e-12; the error follows the tolerance. (Between rtol
-/// 1e-8 and 1e-9 the split law's error stays near 1e-7: the Stribeck band of |v2|/g(v2), which
-/// no switch marks, is resolved only by steps below that.)
+/// Oracle: the dopri5 solution at rtol 1e-12; the error follows the tolerance, below 1e-7 too:
+/// there steps also end inside the Stribeck band, without which the split law's error stayed
+/// near 1e-7 from rtol 1e-7 to 1e-9 (its bump in |v2|/g(v2), a tenth of a microsecond wide, fell
+/// between the stages).
 #[test]
 fn dopri5_meets_its_tolerance_for_both_slip_laws() {
     for slip in ["split", "total"] {
@@ -92,8 +93,7 @@ fn dopri5_meets_its_tolerance_for_both_slip_laws() {
         v.set(vr::INITIAL, f64::from(INITIAL.value_of("sliding").unwrap()));
         v.set(vr::TOLERANCE, 1e-12);
         let reference = mean_after(&v, 20);
-        // The default tolerance, and one where the split law is past its plateau.
-        for (rtol, bound) in [(1e-6, 1e-6), (1e-10, 1e-9)] {
+        for (rtol, bound) in [(1e-6, 1e-6), (1e-7, 1e-7), (1e-8, 1e-8), (1e-10, 1e-9)] {
             v.set(vr::TOLERANCE, rtol);
             let mean = mean_after(&v, 20);
             assert!(
