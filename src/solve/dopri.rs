@@ -507,16 +507,46 @@ impl Dopri5 {
         let mut dense = None;
         // The fraction of the coming step searched: all of it, then up to the first zero found.
         let mut reach = 1.0;
-        for &(i, _) in due.iter() {
+        for &(i, line) in due.iter() {
+            // Where the line puts the zero, as a fraction of the reach.
+            let x_line = line / (r * reach);
+            if best.is_some() && x_line > 1.5 {
+                // Due well after the zero found (and the rest later still).
+                break;
+            }
             let d = dense.get_or_insert_with(|| Dense::new(n, &y_prev[..n], tr, h_prev));
             let switch_at =
                 |x: f64| Self::switch_on(ode, t_prev, d, h_prev, i, 1.0 + x * reach * r);
             let s1 = sw_now[i];
-            let end = switch_at(1.0);
-            if !crossed(s1, end) {
-                continue;
-            }
-            let x = reach * super::root::first_zero(switch_at, s1, end, 1e-7, 100);
+            // Bracket the zero from where the line puts it, which is close: the search then
+            // starts next to it.
+            let (lo, f_lo, hi, f_hi) = if x_line < 1.0 {
+                let at_line = switch_at(x_line);
+                if crossed(s1, at_line) {
+                    (0.0, s1, x_line, at_line)
+                } else {
+                    let end = switch_at(1.0);
+                    if !crossed(s1, end) {
+                        continue;
+                    }
+                    (x_line, at_line, 1.0, end)
+                }
+            } else {
+                let end = switch_at(1.0);
+                if !crossed(s1, end) {
+                    continue;
+                }
+                (0.0, s1, 1.0, end)
+            };
+            let width = hi - lo;
+            let u = super::root::first_zero(
+                |u: f64| switch_at(lo + u * width),
+                f_lo,
+                f_hi,
+                1e-7 / width,
+                100,
+            );
+            let x = reach * (lo + u * width);
             reach = x;
             best = Some((i, x * h));
         }
