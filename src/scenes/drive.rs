@@ -14,7 +14,7 @@
 //! exponential per distinct step size). The motor is a source, so there is no passivity to
 //! check; the state is checked finite.
 
-use super::{require_non_negative, require_positive, Scene};
+use super::{require_finite_start, require_non_negative, require_positive, Scene};
 use crate::interface::drive::vr;
 use crate::interface::values::ValueSet;
 use crate::solve::expm::{expm, mul_vec, Matrix};
@@ -93,9 +93,7 @@ pub fn build(
 
 impl Drive {
     pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, String> {
-        if !start_time.is_finite() {
-            return Err(format!("start time {start_time} is not a finite number"));
-        }
+        require_finite_start(start_time)?;
         let resistance = require_positive(values, vr::R)?;
         let inductance = require_positive(values, vr::L)?;
         let kt = require_positive(values, vr::KT_M)?;

@@ -136,6 +136,16 @@ pub fn require_non_negative(values: &ValueSet, value_reference: u32) -> Result<f
 }
 
 /// Any finite value.
+/// Errs unless the start time a scene is built at is a finite number (the FMI layer checks it
+/// too; scenes are also built in-process).
+pub fn require_finite_start(start_time: f64) -> Result<(), String> {
+    if start_time.is_finite() {
+        Ok(())
+    } else {
+        Err(format!("start time {start_time} is not a finite number"))
+    }
+}
+
 pub fn require_finite(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
     require(values, value_reference, f64::is_finite, "a finite number")
 }

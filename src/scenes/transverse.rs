@@ -20,7 +20,8 @@ mod two_phase;
 
 use super::period_mean::PeriodMean;
 use super::{
-    require_finite, require_non_negative, require_passive, require_positive, Scene, Scope,
+    require_finite, require_finite_start, require_non_negative, require_passive, require_positive,
+    Scene, Scope,
 };
 use crate::friction::lugre2d::{radial_rates, Contact, LuGre2d, SlipLaw};
 use crate::interface::transverse::vr;
@@ -351,9 +352,7 @@ impl Transverse {
 
     /// The scene for an interface that hides what `scope` lists.
     pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
-        if !start_time.is_finite() {
-            return Err(format!("start time {start_time} is not a finite number"));
-        }
+        require_finite_start(start_time)?;
         let m = require_positive(values, vr::M)?;
         let mu = require_positive(values, vr::MU)?;
         let g = require_positive(values, vr::G)?;
