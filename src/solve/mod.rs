@@ -7,6 +7,7 @@
 pub mod dense;
 pub mod dopri;
 pub mod expm;
+pub mod narrow;
 pub mod phase;
 pub mod radau;
 pub mod rk4;

@@ -16,6 +16,7 @@
 
 use super::dense::{lu_factor, lu_solve};
 use super::dopri::{Switching, MAX_SWITCHES};
+use super::narrow::{Verdict, Watch};
 use super::{Integrator, Ode, Work, MAX_DIM};
 
 const STAGES: usize = 3;
@@ -456,6 +457,7 @@ impl Radau5 {
         let mut count = switching.map_or(0, |sw| sw.switches(t, &y[..n], &mut sw_old));
         // Set while the step is being retaken to end on a kink: the step before it, to resume.
         let mut resume: Option<f64> = None;
+        let mut watch = Watch::default();
         while t < t1 {
             steps += 1;
             if steps > self.max_steps {
@@ -573,13 +575,34 @@ impl Radau5 {
                     continue;
                 }
             }
+            let mut sw_end = [0.0; MAX_SWITCHES];
+            let count_end = switching.map_or(0, |sw| sw.switches(t + h_try, &y1[..n], &mut sw_end));
+            let mut cap = None;
+            if let Some((sw, r0)) = switching.and_then(|sw| Some((sw, sw.narrow(&sw_old)?))) {
+                let r1 = sw.narrow(&sw_end).map_or(f64::INFINITY, |e| e.r);
+                let r_at = |theta: f64| {
+                    let state = collocation(&tab, n, y, &z, theta);
+                    let mut at = [0.0; MAX_SWITCHES];
+                    sw.switches(t + theta * h_try, &state[..n], &mut at);
+                    sw.narrow(&at).map_or(f64::INFINITY, |e| e.r)
+                };
+                let h_min = 16.0 * f64::EPSILON * t.abs().max(span);
+                match watch.judge(t, h_try, h_min, r0, r1, r_at) {
+                    Verdict::Retake(h_short) => {
+                        work.rejected += 1;
+                        h = h_short;
+                        last_rejected = true;
+                        continue;
+                    }
+                    Verdict::Keep { cap: c } => cap = c,
+                }
+            }
             y[..n].copy_from_slice(&y1[..n]);
             if y[..n].iter().any(|x| !x.is_finite()) {
                 return Err(format!("Radau5: the solution became non-finite at t = {t}"));
             }
-            if let Some(sw) = switching {
-                count = sw.switches(t + h_try, &y[..n], &mut sw_old);
-            }
+            sw_old = sw_end;
+            count = count_end;
             t = if clamped { t1 } else { t + h_try };
             work.steps += 1;
             eval(ode, t, &y[..n], &mut f0[..n], work);
@@ -594,6 +617,9 @@ impl Radau5 {
                 // After a step cut short at a kink, go on with the step that was cut.
                 if let Some(before) = resume.take() {
                     h = h.max(before).min(h_max);
+                }
+                if let Some(cap) = cap {
+                    h = h.min(cap);
                 }
             }
             resume = None;
