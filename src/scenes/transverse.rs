@@ -27,6 +27,7 @@ use crate::friction::lugre2d::{radial_rates, Contact, LuGre2d, SlipLaw};
 use crate::interface::transverse::vr;
 use crate::interface::values::ValueSet;
 use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
+use crate::solve::narrow::Narrow;
 use crate::solve::phase::cos_turns;
 use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
@@ -47,8 +48,9 @@ const VY: usize = 7;
 const ZY: usize = 8;
 
 /// Half-width of the band |v1 + v2| < BAND vs where ht and g vary; dopri5 ends steps on its
-/// edges so the damping pulse inside (tens of ns wide at the paper's values) is never stepped
-/// over. exp(-BAND^2) ~ 1e-7 outside.
+/// edges and moves v1 + v2 by at most vs a step inside it ([`crate::solve::narrow`]), so the
+/// damping pulse there (tens of ns wide at the paper's values) is never stepped over.
+/// exp(-BAND^2) ~ 1e-7 outside.
 const BAND: f64 = 4.0;
 
 /// Where else, in multiples of vs, steps end inside the Stribeck band of a rate whose absolute
@@ -250,6 +252,17 @@ impl Switching for Equations<'_> {
 
     fn decaying(&self) -> &[usize] {
         &[ZX, ZY]
+    }
+
+    /// v1 + v2 in units of vs, from the band's edges (`switches_of`): the damping's pulse
+    /// ht(v1 + v2) sdot. Where the body turns, v1 + v2 can also dip into the band and out again
+    /// between two step ends, which the edges alone do not see.
+    #[inline]
+    fn narrow(&self, sw: &[f64; MAX_SWITCHES]) -> Option<Narrow> {
+        Some(Narrow {
+            r: 0.5 * (sw[0] + sw[1]) / self.p.law.vs,
+            band: BAND,
+        })
     }
 }
 

@@ -10,6 +10,7 @@
 
 use super::{kink_switches, DriveVelocity, Params, BAND, LAMBDA, Q, VX, W, X, ZX};
 use crate::solve::dopri::{Switching, MAX_SWITCHES};
+use crate::solve::narrow::Narrow;
 use crate::solve::Ode;
 
 pub struct Axial<'a> {
@@ -79,5 +80,14 @@ impl Switching for Axial<'_> {
 
     fn decaying(&self) -> &[usize] {
         &[ZX]
+    }
+
+    /// x' in units of vs, from the band's edges, as v1 + v2 in the plane.
+    #[inline]
+    fn narrow(&self, sw: &[f64; MAX_SWITCHES]) -> Option<Narrow> {
+        Some(Narrow {
+            r: 0.5 * (sw[0] + sw[1]) / self.p.law.vs,
+            band: BAND,
+        })
     }
 }
