@@ -25,8 +25,8 @@ pub const MAX_CHANGE: f64 = 1.0;
 
 /// A step is sampled when r at either end lies within this many band half-widths of 0, or
 /// changes sign. Farther out r would have to turn around faster than the step resolves the
-/// motion to reach the band; on scene T (va 2 to 12 mm/s) sampling every step changes one step
-/// count of 40 runs, by 0.2 %.
+/// motion to reach the band; on scene T (va 2 to 12 mm/s, 40 runs) sampling every step changes
+/// no step count.
 const WATCH: f64 = 16.0;
 
 /// Points per step at which r is sampled (the last is the step's end).
