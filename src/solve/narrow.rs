@@ -30,8 +30,27 @@ pub const MAX_CHANGE: f64 = 1.0;
 /// no step count.
 const WATCH: f64 = 16.0;
 
-/// Points per step at which r is sampled (the last is the step's end).
+/// Points per step at which r is sampled where it does not run straight (the last is the
+/// step's end).
 const SAMPLES: usize = 8;
+
+/// How far r at mid-step may lie from the middle of its ends for the step to count as straight
+/// (judged on its ends and midpoint alone).
+const STRAIGHT: f64 = 0.25 * MAX_CHANGE;
+
+/// How far r moves inside the band |r| < `band`, and in all, along `points`.
+fn moves(band: f64, mut points: impl Iterator<Item = f64>) -> (f64, f64) {
+    let clip = |r: f64| r.clamp(-band, band);
+    let (mut inside, mut total) = (0.0, 0.0);
+    if let Some(mut a) = points.next() {
+        for b in points {
+            inside += (clip(b) - clip(a)).abs();
+            total += (b - a).abs();
+            a = b;
+        }
+    }
+    (inside, total)
+}
 
 /// The step a retake or a cap asks for is this fraction of the one that would just do.
 const SAFETY: f64 = 0.9;
@@ -79,19 +98,19 @@ impl Watch {
         }
         let band = r0.band;
         let (a0, b0) = (r0.r, r1);
-        let clip = |r: f64| r.clamp(-band, band);
-        // How far r moves inside the band, and in all, along the samples.
-        let (mut inside, mut total) = (0.0, 0.0);
-        let mut a = a0;
-        for i in 1..=SAMPLES {
-            let b = if i == SAMPLES {
-                b0
-            } else {
-                r_at(i as f64 / SAMPLES as f64)
-            };
-            inside += (clip(b) - clip(a)).abs();
-            total += (b - a).abs();
-            a = b;
+        let mid = r_at(0.5);
+        let (mut inside, mut total) = moves(band, [a0, mid, b0].into_iter());
+        // Where r runs nearly straight the midpoint is enough: a dip between the samples would
+        // bend it. That spares six evaluations a step where r stays near the band for long (a
+        // wide band: vs 1 mm/s on scene T made every step 70 % dearer with all eight).
+        if (mid - 0.5 * (a0 + b0)).abs() > STRAIGHT {
+            let points = (0..=SAMPLES).map(|i| match i {
+                0 => a0,
+                _ if i == SAMPLES => b0,
+                _ if 2 * i == SAMPLES => mid,
+                _ => r_at(i as f64 / SAMPLES as f64),
+            });
+            (inside, total) = moves(band, points);
         }
         if inside > MAX_CHANGE {
             let jump =
