@@ -554,9 +554,11 @@ impl Radau5 {
                     continue;
                 }
             }
+            // The switches at the step's end, for the kink search, the narrow feature and the
+            // next step.
+            let mut sw_new = [0.0; MAX_SWITCHES];
+            let count_new = switching.map_or(0, |sw| sw.switches(t + h_try, &y1[..n], &mut sw_new));
             if let (Some(sw), None) = (switching, resume) {
-                let mut sw_new = [0.0; MAX_SWITCHES];
-                sw.switches(t + h_try, &y1[..n], &mut sw_new);
                 let mut theta_min: f64 = 1.0;
                 for i in 0..count {
                     let crossed = sw_new[i] == 0.0 || (sw_new[i] > 0.0) != (sw_old[i] > 0.0);
@@ -575,11 +577,9 @@ impl Radau5 {
                     continue;
                 }
             }
-            let mut sw_end = [0.0; MAX_SWITCHES];
-            let count_end = switching.map_or(0, |sw| sw.switches(t + h_try, &y1[..n], &mut sw_end));
             let mut cap = None;
             if let Some((sw, r0)) = switching.and_then(|sw| Some((sw, sw.narrow(&sw_old)?))) {
-                let r1 = sw.narrow(&sw_end).map_or(f64::INFINITY, |e| e.r);
+                let r1 = sw.narrow(&sw_new).map_or(f64::INFINITY, |e| e.r);
                 let r_at = |theta: f64| {
                     let state = collocation(&tab, n, y, &z, theta);
                     let mut at = [0.0; MAX_SWITCHES];
@@ -601,8 +601,8 @@ impl Radau5 {
             if y[..n].iter().any(|x| !x.is_finite()) {
                 return Err(format!("Radau5: the solution became non-finite at t = {t}"));
             }
-            sw_old = sw_end;
-            count = count_end;
+            sw_old = sw_new;
+            count = count_new;
             t = if clamped { t1 } else { t + h_try };
             work.steps += 1;
             eval(ode, t, &y[..n], &mut f0[..n], work);
