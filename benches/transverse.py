@@ -141,6 +141,11 @@ def rel(x, ref):
     return abs(x / ref - 1.0)
 
 
+def worst_from(row, rows):
+    """The worst error among `rows` of `row`'s solver at its tolerance or a tighter one."""
+    return max(r[2] for r in rows if r[0] == row[0] and float(r[1]) <= float(row[1]))
+
+
 def part1(quick):
     print("## Part 1: 1 s of simulated time (targets)\n")
     print("| slip law | kt | path | solver | knob | rel. error | CPU s | RHS evals | steps | rejected |")
@@ -180,9 +185,9 @@ def part2(quick):
     for law, ktf in cases:
         t_end = span if ktf == 1 else 0.005
         ref = in_process(law, ktf, t_end, ["dopri5:1e-12"], repeats=1)["dopri5:1e-12"][0]
-        # Three tolerances a decade, so that "our cheapest run at least as accurate" is not
-        # one much more accurate than needed.
-        ladder = ["1e-5"] + [f"{m}e-{k}" for k in range(6, 11) for m in (5, 2, 1)]
+        # Six tolerances a decade, so that "our cheapest run at least as accurate" is not one
+        # much more accurate, and dearer, than needed (a step of the ladder costs 7 to 10 %).
+        ladder = ["1e-5"] + [f"{m}e-{k}" for k in range(6, 11) for m in (7, 5, 3, 2, 1.5, 1)]
         ours = ([f"dopri5:{tol}" for tol in ladder] if ktf == 1
                 else ["dopri5:1e-4", "radau5:1e-4", "radau5:1e-5", "radau5:1e-6", "radau5:1e-7"])
         # Seven repeats: our runs here take milliseconds, where a burst of load moves one run.
@@ -203,18 +208,23 @@ def part2(quick):
         for name, knob, err, cpu, rhs in results:
             print(f"| {law} | x{ktf} | {name} | {knob} | {err:.2e} | {cpu:.3f} | "
                   f"{cpu / t_end:.2f} | {rhs} |")
-        # Speed-up at equal error: for each scipy row, our cheapest run at least as accurate.
+        # Speed-up at equal error: for each scipy row, our cheapest run at least as accurate,
+        # counting for each of our runs the worst error of its solver at that tolerance or any
+        # tighter one: the error does not fall monotonically with the tolerance, and a run that
+        # happens to land low should not stand for its neighbours.
+        ours_rows = [r for r in results if r[0].startswith("ours")]
         for name, knob, err, cpu, _ in results:
             if name.startswith("scipy") and not math.isnan(err):
-                better = [r for r in results if r[0].startswith("ours") and r[2] <= err]
+                better = [(r, worst) for r in ours_rows
+                          if (worst := worst_from(r, ours_rows)) <= err]
                 if better:
-                    fastest = min(better, key=lambda r: r[3])
+                    fastest, worst = min(better, key=lambda b: b[0][3])
                     speedups.append((law, ktf, name, knob, err, cpu / max(fastest[3], 1e-6),
-                                     fastest[0], fastest[1], fastest[2]))
+                                     fastest[0], fastest[1], worst))
     print()
     print("Speed-up at equal error: scipy's CPU time over that of our cheapest run at least as "
-          "accurate.\n")
-    print("| slip law | kt | scipy | rtol | its error | ours | knob | our error | speed-up |")
+          "accurate, where our error is the worst of the solver at that tolerance or tighter.\n")
+    print("| slip law | kt | scipy | rtol | its error | ours | knob | our worst error | speed-up |")
     print("|---|---|---|---|---|---|---|---|---|")
     for law, ktf, name, knob, err, ratio, ours, our_knob, our_err in speedups:
         print(f"| {law} | x{ktf} | {name[6:]} | {knob} | {err:.1e} | {ours[5:]} | {our_knob} | "

@@ -55,18 +55,25 @@ const BAND: f64 = 4.0;
 
 /// Where else, in multiples of vs, steps end inside the Stribeck band of a rate whose absolute
 /// value has a kink (v1 and v2 for the split law, v1 + v2 for the total law), when the
-/// tolerance asks for it ([`RESOLVE_BAND_RTOL`]). Inside the band g(v) rises to FS over a time
-/// of about vs / |v'| (a tenth of a microsecond at the paper's values), and the slip |v|/g(v)
-/// has a bump there that steps ending only on v = 0 span: the stages miss the bump and so does
-/// the error estimate. That costs the split law about 1e-7 of FFx_mean whatever the tolerance;
-/// with steps ending also at |v| = vs and 3 vs, rtol 1e-7 gives 9e-9 (benches/transverse.py).
+/// tolerance asks for it ([`DOPRI5_RESOLVE_BAND_RTOL`]). Inside the band g(v) rises to FS over a
+/// time of about vs / |v'| (a tenth of a microsecond at the paper's values), and the slip
+/// |v|/g(v) has a bump there that steps ending only on v = 0 span: the stages miss the bump and
+/// so does the error estimate. That costs the split law 1e-7 to 7e-7 of FFx_mean whatever the
+/// tolerance; with steps ending also at |v| = vs and 3 vs, rtol 1e-7 gives 9e-9
+/// (benches/transverse.py). Ends at 3 vs alone leave 2e-8 from rtol 5e-8 to 1e-9.
 const BAND_POINTS: [f64; 2] = [1.0, 3.0];
 
-/// The tolerance at and below which the adaptive solvers (dopri5 and radau5) resolve the
-/// Stribeck band ([`BAND_POINTS`]). Above it the band's unresolved bump is below the
-/// tolerance's own error, and the extra step ends would double the CPU time (split law, rtol
-/// 1e-6: 42 % more steps, and kinks to foresee at each).
-const RESOLVE_BAND_RTOL: f64 = 1e-7;
+/// The tolerance at and below which dopri5 resolves the Stribeck band ([`BAND_POINTS`]). Split
+/// law, FFx_mean over 1 s at the benchmark's case, without and with the band's step ends:
+/// rtol 1e-6 5.6e-7 / 3.6e-7, 5e-7 2.6e-7 / 1.5e-7, 3e-7 7.0e-7 / 6.5e-8, 2e-7 1.7e-7 / 7.5e-9.
+/// Above 3e-7 the unresolved bump is within the tolerance and the step ends would cost 40 %
+/// more right-hand sides; from 3e-7 down they are what meets it, and rtol 2e-7 then reaches
+/// rtol 1e-7's accuracy with 8 % fewer.
+const DOPRI5_RESOLVE_BAND_RTOL: f64 = 3e-7;
+
+/// radau5's threshold: without the band's step ends it is already within 1.2e-8 at rtol 3e-7
+/// and 2e-7 (150 periods), and they would cost it 11 % more there.
+const RADAU5_RESOLVE_BAND_RTOL: f64 = 1e-7;
 
 /// Writes, from `out[k]`, the switching functions of a rate `v` whose absolute value has a
 /// kink: v itself and, when `resolve`, v -+ m vs for [`BAND_POINTS`]. Returns the next free
@@ -551,8 +558,8 @@ impl Transverse {
     fn substep(&mut self, t0: f64, t1: f64, vd: DriveVelocity) -> Result<(), String> {
         self.y[Q] = 0.0;
         let resolve_band = match &self.solver {
-            Solver::Dopri5(d) => d.rtol <= RESOLVE_BAND_RTOL,
-            Solver::Radau5(r) => r.rtol <= RESOLVE_BAND_RTOL,
+            Solver::Dopri5(d) => d.rtol <= DOPRI5_RESOLVE_BAND_RTOL,
+            Solver::Radau5(r) => r.rtol <= RADAU5_RESOLVE_BAND_RTOL,
             _ => false,
         };
         let planar = Equations::new(&self.p, vd, resolve_band);

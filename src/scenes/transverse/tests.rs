@@ -82,10 +82,10 @@ fn held_body_matches_scene_l_lugre() {
     );
 }
 
-/// Oracle: the dopri5 solution at rtol 1e-12; the error follows the tolerance, below 1e-7 too:
-/// there steps also end inside the Stribeck band, without which the split law's error stayed
-/// near 1e-7 from rtol 1e-7 to 1e-9 (its bump in |v2|/g(v2), a tenth of a microsecond wide, fell
-/// between the stages).
+/// Oracle: the dopri5 solution at rtol 1e-12; the error follows the tolerance, from 3e-7 down
+/// too: there steps also end inside the Stribeck band, without which the split law's error
+/// stayed near 1e-7 from rtol 1e-7 to 1e-9 and read 3.8e-7 here at 3e-7 (7e-7 over 1 s; its
+/// bump in |v2|/g(v2), a tenth of a microsecond wide, fell between the stages).
 #[test]
 fn dopri5_meets_its_tolerance_for_both_slip_laws() {
     for slip in ["split", "total"] {
@@ -93,7 +93,13 @@ fn dopri5_meets_its_tolerance_for_both_slip_laws() {
         v.set(vr::INITIAL, f64::from(INITIAL.value_of("sliding").unwrap()));
         v.set(vr::TOLERANCE, 1e-12);
         let reference = mean_after(&v, 20);
-        for (rtol, bound) in [(1e-6, 1e-6), (1e-7, 1e-7), (1e-8, 1e-8), (1e-10, 1e-9)] {
+        for (rtol, bound) in [
+            (1e-6, 1e-6),
+            (3e-7, 3e-7),
+            (1e-7, 1e-7),
+            (1e-8, 1e-8),
+            (1e-10, 1e-9),
+        ] {
             v.set(vr::TOLERANCE, rtol);
             let mean = mean_after(&v, 20);
             assert!(
