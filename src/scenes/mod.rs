@@ -135,7 +135,6 @@ pub fn require_non_negative(values: &ValueSet, value_reference: u32) -> Result<f
     )
 }
 
-/// Any finite value.
 /// Errs unless the start time a scene is built at is a finite number (the FMI layer checks it
 /// too; scenes are also built in-process).
 pub fn require_finite_start(start_time: f64) -> Result<(), String> {
@@ -146,6 +145,7 @@ pub fn require_finite_start(start_time: f64) -> Result<(), String> {
     }
 }
 
+/// Any finite value.
 pub fn require_finite(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
     require(values, value_reference, f64::is_finite, "a finite number")
 }

@@ -75,6 +75,16 @@ const DOPRI5_RESOLVE_BAND_RTOL: f64 = 3e-7;
 /// and 2e-7 (150 periods), and they would cost it 11 % more there.
 const RADAU5_RESOLVE_BAND_RTOL: f64 = 1e-7;
 
+/// The damping band's coordinate (the rate in units of vs) read off its edges, switches 0 and
+/// 1 of both the plane and the axial equations: the narrow feature dopri5 and radau5 watch.
+#[inline]
+fn band_coordinate(sw: &[f64; MAX_SWITCHES], vs: f64) -> Narrow {
+    Narrow {
+        r: 0.5 * (sw[0] + sw[1]) / vs,
+        band: BAND,
+    }
+}
+
 /// Writes, from `out[k]`, the switching functions of a rate `v` whose absolute value has a
 /// kink: v itself and, when `resolve`, v -+ m vs for [`BAND_POINTS`]. Returns the next free
 /// index.
@@ -266,10 +276,7 @@ impl Switching for Equations<'_> {
     /// between two step ends, which the edges alone do not see.
     #[inline]
     fn narrow(&self, sw: &[f64; MAX_SWITCHES]) -> Option<Narrow> {
-        Some(Narrow {
-            r: 0.5 * (sw[0] + sw[1]) / self.p.law.vs,
-            band: BAND,
-        })
+        Some(band_coordinate(sw, self.p.law.vs))
     }
 }
 

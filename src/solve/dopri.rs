@@ -465,6 +465,22 @@ impl Dopri5 {
         super::root::first_zero(switch_at, s0, s1, 1e-9, 100)
     }
 
+    /// The switching functions at `t + theta h` on the dense output.
+    fn switches_on<S: Switching + ?Sized>(
+        ode: &S,
+        t: f64,
+        dense: &Dense,
+        h: f64,
+        theta: f64,
+    ) -> [f64; MAX_SWITCHES] {
+        let n = ode.dim().min(MAX_DIM);
+        let mut state = [0.0; MAX_DIM];
+        let mut sw = [0.0; MAX_SWITCHES];
+        dense.at(theta, &mut state);
+        ode.switches(t + theta * h, &state[..n], &mut sw);
+        sw
+    }
+
     /// Switching function `i` at `t + theta h` on the dense output.
     fn switch_on<S: Switching + ?Sized>(
         ode: &S,
@@ -474,12 +490,7 @@ impl Dopri5 {
         i: usize,
         theta: f64,
     ) -> f64 {
-        let n = ode.dim().min(MAX_DIM);
-        let mut state = [0.0; MAX_DIM];
-        let mut sw = [0.0; MAX_SWITCHES];
-        dense.at(theta, &mut state);
-        ode.switches(t + theta * h, &state[..n], &mut sw);
-        sw[i]
+        Self::switches_on(ode, t, dense, h, theta)[i]
     }
 
     /// `watch`'s verdict on the step `(t, y, trial, h)` near a narrow feature, sampled on its
@@ -503,11 +514,7 @@ impl Dopri5 {
 
     /// The narrow feature's coordinate at `t + theta h` on the dense output (infinite: none).
     fn narrow_on<S: Switching + ?Sized>(ode: &S, t: f64, dense: &Dense, h: f64, theta: f64) -> f64 {
-        let n = ode.dim().min(MAX_DIM);
-        let mut state = [0.0; MAX_DIM];
-        let mut sw = [0.0; MAX_SWITCHES];
-        dense.at(theta, &mut state);
-        ode.switches(t + theta * h, &state[..n], &mut sw);
+        let sw = Self::switches_on(ode, t, dense, h, theta);
         ode.narrow(&sw).map_or(f64::INFINITY, |e| e.r)
     }
 

@@ -8,7 +8,7 @@
 //! The state is the general one's first `dim` entries, `[x, x', z_x, lambda, w, q]` (q only when
 //! the mean force is read), so the scene's outputs read it unchanged.
 
-use super::{kink_switches, DriveVelocity, Params, BAND, LAMBDA, Q, VX, W, X, ZX};
+use super::{band_coordinate, kink_switches, DriveVelocity, Params, BAND, LAMBDA, Q, VX, W, X, ZX};
 use crate::solve::dopri::{Switching, MAX_SWITCHES};
 use crate::solve::narrow::Narrow;
 use crate::solve::Ode;
@@ -85,9 +85,6 @@ impl Switching for Axial<'_> {
     /// x' in units of vs, from the band's edges, as v1 + v2 in the plane.
     #[inline]
     fn narrow(&self, sw: &[f64; MAX_SWITCHES]) -> Option<Narrow> {
-        Some(Narrow {
-            r: 0.5 * (sw[0] + sw[1]) / self.p.law.vs,
-            band: BAND,
-        })
+        Some(band_coordinate(sw, self.p.law.vs))
     }
 }
