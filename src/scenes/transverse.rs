@@ -55,25 +55,44 @@ const BAND: f64 = 4.0;
 
 /// Where else, in multiples of vs, steps end inside the Stribeck band of a rate whose absolute
 /// value has a kink (v1 and v2 for the split law, v1 + v2 for the total law), when the
-/// tolerance asks for it ([`DOPRI5_RESOLVE_BAND_RTOL`]). Inside the band g(v) rises to FS over a
-/// time of about vs / |v'| (a tenth of a microsecond at the paper's values), and the slip
-/// |v|/g(v) has a bump there that steps ending only on v = 0 span: the stages miss the bump and
-/// so does the error estimate. That costs the split law 1e-7 to 7e-7 of FFx_mean whatever the
-/// tolerance; with steps ending also at |v| = vs and 3 vs, rtol 1e-7 gives 9e-9
-/// (benches/transverse.py). Ends at 3 vs alone leave 2e-8 from rtol 5e-8 to 1e-9.
-const BAND_POINTS: [f64; 2] = [1.0, 3.0];
+/// tolerance asks for it ([`band_points`]). Inside the band g(v) rises to FS over a time of
+/// about vs / |v'| (a tenth of a microsecond at the paper's values), and the slip |v|/g(v) has
+/// a bump there that steps ending only on v = 0 span: the stages miss the bump and so does the
+/// error estimate. That costs the split law 1e-7 to 7e-7 of FFx_mean whatever the tolerance.
+/// Ends at 3 vs alone bring that down to about 2e-8, which is where they stay from rtol 1e-7
+/// to 1e-8; ends at vs and 3 vs give 9e-9 at rtol 1e-7 and 2e-11 at 1e-9
+/// (benches/transverse.py). Ends at 2 vs, alone or with vs, stay at 1e-7.
+const BAND_POINTS_COARSE: [f64; 1] = [3.0];
+const BAND_POINTS_FINE: [f64; 2] = [1.0, 3.0];
 
-/// The tolerance at and below which dopri5 resolves the Stribeck band ([`BAND_POINTS`]). Split
-/// law, FFx_mean over 1 s at the benchmark's case, without and with the band's step ends:
-/// rtol 1e-6 5.6e-7 / 3.6e-7, 5e-7 2.6e-7 / 1.5e-7, 3e-7 7.0e-7 / 6.5e-8, 2e-7 1.7e-7 / 7.5e-9.
-/// Above 3e-7 the unresolved bump is within the tolerance and the step ends would cost 40 %
-/// more right-hand sides; from 3e-7 down they are what meets it, and rtol 2e-7 then reaches
-/// rtol 1e-7's accuracy with 8 % fewer.
-const DOPRI5_RESOLVE_BAND_RTOL: f64 = 3e-7;
+/// The tolerance at and below which dopri5 ends steps at [`BAND_POINTS_COARSE`]. Split law,
+/// FFx_mean over 1 s at the benchmark's case, without the band's step ends and with them:
+/// rtol 1e-6 5.6e-7 / 3.4e-7, 5e-7 2.6e-7 / 1.3e-7, 3e-7 7.0e-7 / 4.6e-8, 2e-7 1.7e-7 /
+/// 1.1e-8. Above 3e-7 the unresolved bump is within the tolerance and the step ends would cost
+/// 23 to 26 % more right-hand sides; at 3e-7 they are what meets it.
+const DOPRI5_COARSE_BAND_RTOL: f64 = 3e-7;
 
-/// radau5's threshold: without the band's step ends it is already within 1.2e-8 at rtol 3e-7
-/// and 2e-7 (150 periods), and they would cost it 11 % more there.
-const RADAU5_RESOLVE_BAND_RTOL: f64 = 1e-7;
+/// The tolerance at and below which dopri5 ends steps at [`BAND_POINTS_FINE`] instead: there
+/// the coarse ends' 2e-8 (2.7e-8 at rtol 1e-7) is no longer well inside the tolerance. Between
+/// the two thresholds the coarse ends cost 12 % fewer right-hand sides than the fine ones, and
+/// fewer kinks to foresee: at rtol 2e-7, 0.10 s of CPU a simulated second against 0.12 s.
+const DOPRI5_FINE_BAND_RTOL: f64 = 1e-7;
+
+/// radau5 ends steps at [`BAND_POINTS_FINE`] from this tolerance down: without them it is
+/// already within 1.2e-8 at rtol 3e-7 and 2e-7 (150 periods), and they would cost it 11 % more
+/// there.
+const RADAU5_FINE_BAND_RTOL: f64 = 1e-7;
+
+/// The points inside the Stribeck band where `solver` ends steps: set by the tolerance for the
+/// adaptive solvers, none for the others.
+fn band_points(solver: &Solver) -> &'static [f64] {
+    match solver {
+        Solver::Dopri5(d) if d.rtol <= DOPRI5_FINE_BAND_RTOL => &BAND_POINTS_FINE,
+        Solver::Dopri5(d) if d.rtol <= DOPRI5_COARSE_BAND_RTOL => &BAND_POINTS_COARSE,
+        Solver::Radau5(r) if r.rtol <= RADAU5_FINE_BAND_RTOL => &BAND_POINTS_FINE,
+        _ => &[],
+    }
+}
 
 /// The damping band's coordinate (the rate in units of vs) read off its edges, switches 0 and
 /// 1 of both the plane and the axial equations: the narrow feature dopri5 and radau5 watch.
@@ -86,16 +105,19 @@ fn band_coordinate(sw: &[f64; MAX_SWITCHES], vs: f64) -> Narrow {
 }
 
 /// Writes, from `out[k]`, the switching functions of a rate `v` whose absolute value has a
-/// kink: v itself and, when `resolve`, v -+ m vs for [`BAND_POINTS`]. Returns the next free
-/// index.
+/// kink: v itself and v -+ m vs for the band's `points` ([`band_points`]). Returns the next
+/// free index.
 #[inline]
-fn kink_switches(v: f64, vs: f64, resolve: bool, out: &mut [f64; MAX_SWITCHES], k: usize) -> usize {
+fn kink_switches(
+    v: f64,
+    vs: f64,
+    points: &[f64],
+    out: &mut [f64; MAX_SWITCHES],
+    k: usize,
+) -> usize {
     out[k] = v;
-    if !resolve {
-        return k + 1;
-    }
     let mut k = k + 1;
-    for m in BAND_POINTS {
+    for &m in points {
         out[k] = v - m * vs;
         out[k + 1] = v + m * vs;
         k += 2;
@@ -189,8 +211,8 @@ impl DriveVelocity {
 struct Equations<'a> {
     p: &'a Params,
     vd: DriveVelocity,
-    /// Steps also end inside the Stribeck band ([`BAND_POINTS`]).
-    resolve_band: bool,
+    /// Where steps also end inside the Stribeck band ([`band_points`]).
+    band_points: &'static [f64],
     /// The support velocity at the last time asked for: dopri5's last two stages and the
     /// switching functions after them all fall on the step's end, and the cos is a fifth of a
     /// right-hand side.
@@ -198,11 +220,11 @@ struct Equations<'a> {
 }
 
 impl<'a> Equations<'a> {
-    fn new(p: &'a Params, vd: DriveVelocity, resolve_band: bool) -> Self {
+    fn new(p: &'a Params, vd: DriveVelocity, band_points: &'static [f64]) -> Self {
         Equations {
             p,
             vd,
-            resolve_band,
+            band_points,
             // NaN: equal to no time.
             last_support: Cell::new((f64::NAN, Vector2::zeros())),
         }
@@ -288,14 +310,14 @@ impl Equations<'_> {
         let band = BAND * vs;
         out[0] = vr - band;
         out[1] = vr + band;
-        let resolve = self.resolve_band;
+        let points = self.band_points;
         match self.p.slip {
             // |v1| and |v2| have kinks.
             SlipLaw::Split => {
-                let k = kink_switches(v1, vs, resolve, out, 2);
-                kink_switches(v2, vs, resolve, out, k)
+                let k = kink_switches(v1, vs, points, out, 2);
+                kink_switches(v2, vs, points, out, k)
             }
-            SlipLaw::Total => kink_switches(vr, vs, resolve, out, 2),
+            SlipLaw::Total => kink_switches(vr, vs, points, out, 2),
         }
     }
 }
@@ -564,17 +586,13 @@ impl Transverse {
     /// Advances over one sub-step `[t0, t1]` that lies within one period.
     fn substep(&mut self, t0: f64, t1: f64, vd: DriveVelocity) -> Result<(), String> {
         self.y[Q] = 0.0;
-        let resolve_band = match &self.solver {
-            Solver::Dopri5(d) => d.rtol <= DOPRI5_RESOLVE_BAND_RTOL,
-            Solver::Radau5(r) => r.rtol <= RADAU5_RESOLVE_BAND_RTOL,
-            _ => false,
-        };
-        let planar = Equations::new(&self.p, vd, resolve_band);
+        let band_points = band_points(&self.solver);
+        let planar = Equations::new(&self.p, vd, band_points);
         let axial = axial::Axial {
             p: &self.p,
             vd,
             dim: self.trim.dim(),
-            resolve_band,
+            band_points,
         };
         let eq: &dyn Switching = if self.trim.axial { &axial } else { &planar };
         match &mut self.solver {

@@ -18,8 +18,8 @@ pub struct Axial<'a> {
     pub vd: DriveVelocity,
     /// 5 without the force integral q, 6 with it.
     pub dim: usize,
-    /// Steps also end inside the Stribeck band, as in the plane.
-    pub resolve_band: bool,
+    /// Where steps also end inside the Stribeck band, as in the plane.
+    pub band_points: &'static [f64],
 }
 
 impl Axial<'_> {
@@ -68,7 +68,7 @@ impl Switching for Axial<'_> {
         let vs = self.p.law.vs;
         out[0] = v - BAND * vs;
         out[1] = v + BAND * vs;
-        kink_switches(v, vs, self.resolve_band, out, 2)
+        kink_switches(v, vs, self.band_points, out, 2)
     }
 
     /// z_x relaxes at the slip rate |x'|/g(x'), taken exactly within each dopri5 step as in the
