@@ -63,6 +63,7 @@ const BAND: f64 = 4.0;
 /// to 1e-8; ends at vs and 3 vs give 9e-9 at rtol 1e-7 and 2e-11 at 1e-9
 /// (benches/transverse.py). Ends at 2 vs, alone or with vs, stay at 1e-7.
 const BAND_POINTS_COARSE: [f64; 1] = [3.0];
+/// The band's step ends for the tightest tolerances: at vs too.
 const BAND_POINTS_FINE: [f64; 2] = [1.0, 3.0];
 
 /// The tolerance at and below which dopri5 ends steps at [`BAND_POINTS_COARSE`]. Split law,
