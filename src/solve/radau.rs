@@ -414,6 +414,8 @@ impl Radau5 {
         let tab = Tableau::new();
         let span = t1 - t0;
         let h_max = self.h_max.min(span);
+        // Steps shorter than this at t are round-off in t.
+        let shortest = |t: f64| 16.0 * f64::EPSILON * t.abs().max(span);
         let mut t = t0;
         let mut f0 = [0.0; MAX_DIM];
         eval(ode, t, &y[..n], &mut f0[..n], work);
@@ -469,7 +471,7 @@ impl Radau5 {
             let remaining = t1 - t;
             let clamped = h >= remaining || remaining - h < 1e-3 * h;
             let h_try = if clamped { remaining } else { h };
-            if !clamped && h_try <= 16.0 * f64::EPSILON * t.abs().max(span) {
+            if !clamped && h_try <= shortest(t) {
                 return Err(format!("Radau5: step size {h_try} too small at t = {t}"));
             }
             if !j0_at_t {
@@ -586,8 +588,7 @@ impl Radau5 {
                     sw.switches(t + theta * h_try, &state[..n], &mut at);
                     sw.narrow(&at).map_or(f64::INFINITY, |e| e.r)
                 };
-                let h_min = 16.0 * f64::EPSILON * t.abs().max(span);
-                match watch.judge(t, h_try, h_min, r0, r1, r_at) {
+                match watch.judge(t, h_try, shortest(t), r0, r1, r_at) {
                     Verdict::Retake(h_short) => {
                         work.rejected += 1;
                         h = h_short;
