@@ -450,8 +450,9 @@ impl Dopri5 {
     }
 
     /// The first sign change of switching function `i` inside the trial step, as a fraction of
-    /// the step (the shared root finder on the dense output). A billionth of the step is far
-    /// below what the dense output itself resolves across a kink.
+    /// the step (the shared root finder on the dense output); `None` where the function jumps
+    /// across zero instead. A billionth of the step is far below what the dense output itself
+    /// resolves across a kink.
     fn locate<S: Switching + ?Sized>(
         ode: &S,
         t: f64,
@@ -460,7 +461,7 @@ impl Dopri5 {
         i: usize,
         s0: f64,
         s1: f64,
-    ) -> f64 {
+    ) -> Option<f64> {
         let switch_at = |m: f64| Self::switch_on(ode, t, dense, h, i, m);
         super::root::first_zero(switch_at, s0, s1, 1e-9, 100)
     }
@@ -589,13 +590,14 @@ impl Dopri5 {
                 (0.0, s1, 1.0, end)
             };
             let width = hi - lo;
-            let u = super::root::first_zero(
+            let located = super::root::first_zero(
                 |u: f64| switch_at(lo + u * width),
                 f_lo,
                 f_hi,
                 1e-7 / width,
                 100,
             );
+            let Some(u) = located else { continue };
             let x = reach * (lo + u * width);
             reach = x;
             best = Some((i, x * h));
@@ -717,7 +719,8 @@ impl Dopri5 {
                             continue;
                         }
                     }
-                    let theta = Self::locate(ode, t, d, h, i, sw_old[i], sw_new[i]);
+                    let located = Self::locate(ode, t, d, h, i, sw_old[i], sw_new[i]);
+                    let Some(theta) = located else { continue };
                     if theta * h > h_tiny && theta < theta_min {
                         theta_min = theta;
                         first = Some(i);

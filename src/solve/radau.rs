@@ -356,7 +356,8 @@ fn collocation(tab: &Tableau, n: usize, y: &[f64], z: &[f64; N3], theta: f64) ->
 }
 
 /// The first zero of switching function `i` inside a step, as a fraction of the step (Illinois
-/// false position on the collocation polynomial).
+/// false position on the collocation polynomial); `None` where the function jumps across zero
+/// instead.
 #[allow(clippy::too_many_arguments)]
 fn locate(
     ode: &dyn Switching,
@@ -367,7 +368,7 @@ fn locate(
     i: usize,
     s0: f64,
     s1: f64,
-) -> f64 {
+) -> Option<f64> {
     let mut sw = [0.0; MAX_SWITCHES];
     let switch_at = |m: f64| {
         let state = collocation(tab, n, y, z, m);
@@ -565,9 +566,12 @@ impl Radau5 {
                 for i in 0..count {
                     let crossed = sw_new[i] == 0.0 || (sw_new[i] > 0.0) != (sw_old[i] > 0.0);
                     if sw_old[i] != 0.0 && crossed {
-                        let theta = locate(sw, &tab, n, (t, y, h_try), &z, i, sw_old[i], sw_new[i]);
-                        // A zero at the very start is the kink this step started on.
-                        if theta > 1e-6 {
+                        let located =
+                            locate(sw, &tab, n, (t, y, h_try), &z, i, sw_old[i], sw_new[i]);
+                        let Some(theta) = located else { continue };
+                        // A zero at the very start is the kink this step started on; one
+                        // closer to it than the shortest step is round-off in t (as in dopri5).
+                        if theta > 1e-6 && theta * h_try > shortest(t) {
                             theta_min = theta_min.min(theta);
                         }
                     }
