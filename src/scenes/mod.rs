@@ -152,24 +152,34 @@ pub fn require_finite(values: &ValueSet, value_reference: u32) -> Result<f64, St
 
 /// Errs when a contact has created energy: `dissipated` (the friction work minus `stored`, the
 /// energy in the deflection) is below zero by more than `tolerance` times the energies it is the
-/// difference of. A fixed step beyond the solver's stability bound shows here first, while the
-/// state is still finite but meaningless. The tolerance is far above the solvers' truncation
-/// error and far below what an unstable step produces.
+/// difference of, plus `resolved`, the least energy the solver resolves (0 for a fixed step). A
+/// fixed step beyond the solver's stability bound shows here first, while the state is still
+/// finite but meaningless. The tolerance is far above the solvers' truncation error and far
+/// below what an unstable step produces.
 pub fn require_passive(
-    dissipated: f64,
-    stored: f64,
+    (dissipated, stored): (f64, f64),
     tolerance: f64,
+    resolved: f64,
     t: f64,
     advice: &str,
 ) -> Result<(), String> {
     let scale = dissipated.abs() + stored.abs();
-    if dissipated.is_finite() && stored.is_finite() && dissipated >= -tolerance * scale {
+    if dissipated.is_finite() && stored.is_finite() && dissipated >= -(tolerance * scale + resolved)
+    {
         Ok(())
     } else {
         Err(format!(
             "the contact created energy by t = {t} (dissipated {dissipated:e} J, stored {stored:e} J): the integration is unstable; {advice}"
         ))
     }
+}
+
+/// The least energy an adaptive solver at `rtol` resolves in a contact of stiffness `kt` that
+/// saturates at `fc`: its absolute tolerance on the deflection, rtol FC/kt, times the force at
+/// saturation. Below it the energies are round-off of the tolerance, not a sign of instability
+/// (a contact barely deflected, at 1e-5 of FC/kt, read as creating energy at rtol 1e-3 to 1e-5).
+pub fn resolved_energy(rtol: f64, fc: f64, kt: f64) -> f64 {
+    rtol * fc * fc / kt
 }
 
 #[cfg(test)]

@@ -21,7 +21,7 @@ mod two_phase;
 use super::period_mean::PeriodMean;
 use super::{
     require_finite, require_finite_start, require_non_negative, require_passive, require_positive,
-    Scene, Scope,
+    resolved_energy, Scene, Scope,
 };
 use crate::friction::lugre2d::{radial_rates, Contact, LuGre2d, SlipLaw};
 use crate::interface::transverse::vr;
@@ -684,10 +684,16 @@ impl Scene for Transverse {
         if self.y.iter().all(|v| v.is_finite()) && ff.is_finite() {
             // The bristle damping ht (eq. 5) can return a little energy in transients, hence
             // the looser tolerance than scene L's.
+            let rtol = match &self.solver {
+                Solver::Dopri5(d) => Some(d.rtol),
+                Solver::Radau5(r) => Some(r.rtol),
+                _ => None,
+            };
+            let kt = self.p.law.kt;
             require_passive(
-                self.dissipated_energy(),
-                0.5 * self.p.law.kt * s * s,
+                (self.dissipated_energy(), 0.5 * kt * s * s),
                 1e-3,
+                rtol.map_or(0.0, |rtol| resolved_energy(rtol, self.fc, kt)),
                 t_end,
                 "use more steps_per_period, or the dopri5 or radau5 solver",
             )

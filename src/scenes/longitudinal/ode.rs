@@ -101,6 +101,15 @@ impl Solver {
         matches!(self, Solver::Exponential | Solver::Rk4 { .. })
     }
 
+    /// The relative tolerance of an adaptive solver.
+    pub fn rtol(&self) -> Option<f64> {
+        match self {
+            Solver::Dopri5(d) => Some(d.rtol),
+            Solver::Radau5(r) => Some(r.rtol),
+            _ => None,
+        }
+    }
+
     /// The step the adaptive solver would try next (part of the saved FMU state).
     pub fn step_hint(&self) -> f64 {
         match self {
