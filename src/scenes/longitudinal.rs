@@ -649,7 +649,7 @@ mod tests {
 
     /// A contact barely deflected (va 0.13 um/s: z about 1e-5 of FC/kt) holds energies below
     /// what the adaptive solvers resolve. Their round-off there is not read as the contact
-    /// creating energy (it was, at rtol 1e-3 to 1e-6), while an unstable fixed step still is.
+    /// creating energy (it was, at rtol 1e-3), while an unstable fixed step still is.
     #[test]
     fn a_barely_deflected_contact_is_not_taken_for_an_unstable_one() {
         for solver in ["dopri5", "radau5"] {

@@ -177,7 +177,7 @@ pub fn require_passive(
 /// The least energy an adaptive solver at `rtol` resolves in a contact of stiffness `kt` that
 /// saturates at `fc`: its absolute tolerance on the deflection, rtol FC/kt, times the force at
 /// saturation. Below it the energies are round-off of the tolerance, not a sign of instability
-/// (a contact barely deflected, at 1e-5 of FC/kt, read as creating energy at rtol 1e-3 to 1e-5).
+/// (scene L, Dahl at va 0.13 um/s: a contact at 1e-5 of FC/kt was read as creating energy).
 pub fn resolved_energy(rtol: f64, fc: f64, kt: f64) -> f64 {
     rtol * fc * fc / kt
 }
