@@ -335,6 +335,17 @@ pub enum Solver {
     Exponential(exponential::Exponential),
 }
 
+impl Solver {
+    /// The relative tolerance of an adaptive solver.
+    fn rtol(&self) -> Option<f64> {
+        match self {
+            Solver::Dopri5(d) => Some(d.rtol),
+            Solver::Radau5(r) => Some(r.rtol),
+            _ => None,
+        }
+    }
+}
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Drive {
     Prescribed(f64),
@@ -684,16 +695,13 @@ impl Scene for Transverse {
         if self.y.iter().all(|v| v.is_finite()) && ff.is_finite() {
             // The bristle damping ht (eq. 5) can return a little energy in transients, hence
             // the looser tolerance than scene L's.
-            let rtol = match &self.solver {
-                Solver::Dopri5(d) => Some(d.rtol),
-                Solver::Radau5(r) => Some(r.rtol),
-                _ => None,
-            };
             let kt = self.p.law.kt;
             require_passive(
                 (self.dissipated_energy(), 0.5 * kt * s * s),
                 1e-3,
-                rtol.map_or(0.0, |rtol| resolved_energy(rtol, self.fc, kt)),
+                self.solver
+                    .rtol()
+                    .map_or(0.0, |rtol| resolved_energy(rtol, self.fc, kt)),
                 t_end,
                 "use more steps_per_period, or the dopri5 or radau5 solver",
             )
