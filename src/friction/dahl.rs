@@ -20,6 +20,31 @@ impl Dahl {
         v * sgn(u) * u.abs().powf(self.alpha)
     }
 
+    /// The sliding distance after which a bristle at `z`, sliding in direction `s` (+-1), is
+    /// within `slack` of saturation in `u` (0 when it is already): finite only for alpha < 1.
+    ///
+    /// `u` obeys `du/dx = -c sgn(u)|u|^alpha` in the sliding distance x (see [`Dahl::advance`]),
+    /// which takes it to 0 after `|u0|^(1-alpha) / (c (1-alpha))` when alpha < 1. There the
+    /// rate's slope `alpha c |u|^(alpha-1)` is unbounded, so a solver must stop short of it
+    /// rather than step across it; `slack` bounds that slope.
+    pub fn distance_to_saturation(&self, z: f64, s: f64, slack: f64) -> f64 {
+        if self.alpha >= 1.0 {
+            return f64::INFINITY;
+        }
+        let c = self.kt / self.fc;
+        let u = (1.0 - c * s * z).abs();
+        if u <= slack {
+            return 0.0;
+        }
+        let power = 1.0 - self.alpha;
+        (u.powf(power) - slack.powf(power)) / (c * power)
+    }
+
+    /// The deflection at saturation in direction `s`, where the force is `s FC`.
+    pub fn saturated(&self, s: f64) -> f64 {
+        s * self.fc / self.kt
+    }
+
     /// Exact `(z(h), integral of z)` for `v` frozen over `h`, any `alpha > 0`.
     ///
     /// With `c = kt/FC`, `u` obeys `du/dt = -c|v| sgn(u)|u|^alpha`, which integrates in closed
@@ -56,6 +81,40 @@ impl Dahl {
 #[cfg(test)]
 mod tests {
     use super::Dahl;
+
+    /// Below alpha 1 the exact update is `slack` short of saturation at the predicted distance,
+    /// and saturated just past the distance for no slack.
+    #[test]
+    fn saturation_distance_agrees_with_the_exact_update() {
+        for alpha in [0.2, 0.5, 0.9] {
+            let law = Dahl {
+                kt: 5.6e4,
+                fc: 0.01962,
+                alpha,
+            };
+            let (z0, v) = (-2e-7, 0.3);
+            let x = law.distance_to_saturation(z0, 1.0, 0.0);
+            let near = law.distance_to_saturation(z0, 1.0, 1e-6);
+            let (z_near, _) = law.advance(z0, v, near / v);
+            let u_near = 1.0 - law.kt / law.fc * z_near;
+            assert!(
+                (u_near - 1e-6).abs() < 1e-12,
+                "alpha {alpha}: u {u_near} for 1e-6"
+            );
+            let (after, _) = law.advance(z0, v, 1.001 * x / v);
+            let z_sat = law.saturated(1.0);
+            assert!(
+                (after - z_sat).abs() < 1e-15 * z_sat,
+                "alpha {alpha}: {after}"
+            );
+        }
+        let smooth = Dahl {
+            kt: 1.0,
+            fc: 1.0,
+            alpha: 1.0,
+        };
+        assert_eq!(smooth.distance_to_saturation(0.0, 1.0, 0.0), f64::INFINITY);
+    }
 
     /// The closed-form update must agree with a fine explicit integration of the ODE itself.
     #[test]
