@@ -199,7 +199,7 @@ impl Scene for Drive {
         let z = mul_vec(&phi, &z);
         if !z[..3].iter().all(|v| v.is_finite()) {
             return Err(format!(
-                "the state became non-finite at t = {}: the inputs or their derivatives are too large",
+                "the state became non-finite at t = {}: the inputs or their derivatives are too large, or R, L, kt_m, ke and J make the motor too fast to resolve in f64 over a step of {h} s",
                 self.t + h
             ));
         }
