@@ -473,7 +473,10 @@ impl Radau5 {
             let clamped = h >= remaining || remaining - h < 1e-3 * h;
             let h_try = if clamped { remaining } else { h };
             if !clamped && h_try <= shortest(t) {
-                return Err(format!("Radau5: step size {h_try} too small at t = {t}"));
+                return Err(format!(
+                    "Radau5: the step fell to {h_try} s at t = {t}, the shortest that t resolves; the solution changes too fast there for rtol {} and atol {}: loosen them",
+                    self.rtol, self.atol
+                ));
             }
             if !j0_at_t {
                 jacobian(ode, n, (t, y, &f0), &self.atols(), &mut j0, work);
