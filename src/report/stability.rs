@@ -53,6 +53,13 @@ const LONGITUDINAL: &[Extreme] = &[
     ("va 100 vc", &[("vc", Real(0.00264))], L_PERIOD / 20.0, 60),
     ("vc 0", &[("vc", Real(0.0))], L_PERIOD / 20.0, 60),
     ("vc < 0", &[("vc", Real(-0.146))], L_PERIOD / 20.0, 60),
+    // Below alpha 1 the bristle saturates in finite time, where the rate is not Lipschitz.
+    (
+        "dahl alpha 0.3",
+        &[("law", Item("dahl")), ("alpha", Real(0.3))],
+        L_PERIOD / 20.0,
+        60,
+    ),
     ("m 1e-6", &[("m", Real(1e-6))], L_PERIOD / 20.0, 60),
     ("step 1e-8", &[], 1e-8, 2000),
     ("step 1 s", &[], 1.0, 2),
@@ -83,6 +90,13 @@ const TRANSVERSE: &[Extreme] = &[
     ("va 0", &[("va", Real(0.0))], T_PERIOD / 20.0, 80),
     ("va 100 vd", &[("vd", Real(2e-5))], T_PERIOD / 20.0, 80),
     ("vd 0", &[("vd", Real(0.0))], T_PERIOD / 20.0, 80),
+    // The body moves along y alone, so the bristle passes through zero where the slip reverses.
+    (
+        "vd 0, zeta 0.4, hv 1",
+        &[("vd", Real(0.0)), ("zeta", Real(0.4)), ("hv", Real(1.0))],
+        T_PERIOD / 20.0,
+        80,
+    ),
     ("vd < 0", &[("vd", Real(-5e-4))], T_PERIOD / 20.0, 80),
     ("eta 0", &[("eta", Real(0.0))], T_PERIOD / 20.0, 80),
     ("eta 1", &[("eta", Real(1.0))], T_PERIOD / 20.0, 80),
