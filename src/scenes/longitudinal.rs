@@ -720,7 +720,7 @@ mod tests {
     /// unbounded. The adaptive solvers stop within their tolerance of that corner and hold the
     /// bristle from there: before they did, dopri5 took 760 000 right-hand sides over these 10
     /// periods at alpha 0.3 and radau5 gave up in the first one. Oracle: the exponential scheme
-    /// (exact bristle update, second order) at 16 000 steps a period, less a Richardson
+    /// (exact bristle update, second order) at 16 000 steps a period, with a Richardson
     /// correction from 4 000, within about 1e-10 of the limit.
     #[test]
     fn dahl_below_alpha_one_saturates_without_stalling_the_adaptive_solvers() {
