@@ -85,7 +85,8 @@ const BALANCE_ABOVE: f64 = 16.0 * THETA_13;
 fn balance<const N: usize>(a: &Matrix<N>) -> ([f64; N], Matrix<N>) {
     let mut b = *a;
     let mut d = [1.0; N];
-    // Each sweep shrinks the norm by at least 5 %; the bound only guards against a loop.
+    // Each scaling applied shrinks its row and column's sum by at least 5 %, so the sweeps end;
+    // the bound only guards against a loop.
     for _ in 0..200 {
         let mut converged = true;
         for i in 0..N {
@@ -151,7 +152,7 @@ pub fn expm<const N: usize>(a: &Matrix<N>) -> Result<Matrix<N>, String> {
     expm_unbalanced(a, norm)
 }
 
-/// `exp(a)` for `a` of 1-norm `norm`, by Pade(13) after scaling and before squaring.
+/// `exp(a)` for `a` of 1-norm `norm`: scaling by a power of 2, Pade(13), squaring.
 #[inline]
 fn expm_unbalanced<const N: usize>(a: &Matrix<N>, norm: f64) -> Result<Matrix<N>, String> {
     let squarings = if norm > THETA_13 {
