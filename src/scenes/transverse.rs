@@ -300,8 +300,8 @@ impl Switching for Equations<'_> {
     /// The total law's slip rate |v1 + v2| / g follows the vibration smoothly between its
     /// kinks. Frozen at a step's middle rather than its start, it gives FFx_mean in the steady
     /// vibration with less error for the same work: in the benchmark case over 1 s, rtol 3e-7
-    /// to 2e-8, 35 to 72 % less error for the same right-hand sides (within 1 %); at the
-    /// side-by-side comparison's two tightest errors, 1.2e-7 and 4.0e-9, 7 and 4 % fewer
+    /// to 2e-8, 35 to 72 % less error for the same right-hand sides (within 1 %); at the errors
+    /// scipy's Radau reaches there at rtol 1e-5 and 1e-6 (1.2e-7 and 4.0e-9), 7 and 4 % fewer
     /// right-hand sides. (Over a transient from the start, 20 periods' integral of FFx, it is
     /// neither better nor worse.) The split law's error is set by the Stribeck band's bump
     /// instead: there the middle costs up to 4 % more right-hand sides at equal error, with

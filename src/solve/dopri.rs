@@ -970,8 +970,8 @@ mod tests {
         Dopri5::new(rtol, [rtol; MAX_DIM], 10.0)
     }
 
-    /// y' = sigma(t) (cos t - y) - sin t with the rate sigma = a + b t rising through the run:
-    /// y = cos t + (y(0) - 1) e^(-(a t + b t^2 / 2)).
+    /// y' = -sigma(t) y with the rate sigma = a + b t rising through the run:
+    /// y = y(0) e^(-(a t + b t^2 / 2)).
     struct Ramp {
         a: f64,
         b: f64,
