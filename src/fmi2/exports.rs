@@ -134,6 +134,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
         let Some(callback) = functions.logger else {
             return std::ptr::null_mut();
         };
+        let utf8 = !instance_name.is_null() && text(instance_name).is_some();
         let name = text(instance_name).unwrap_or("");
         let logger = Logger::new(Some(callback), functions.component_environment, name);
         let refuse = |message: String| {
@@ -144,8 +145,14 @@ pub unsafe extern "C" fn fmi2Instantiate(
             );
             std::ptr::null_mut()
         };
-        if name.is_empty() {
-            return refuse("instanceName is NULL or empty: expected a non-empty name".into());
+        if !utf8 && !instance_name.is_null() {
+            return refuse("instanceName is not valid UTF-8: expected a UTF-8 name".into());
+        }
+        // FMI 2.0, 2.1.5: at least one character that is not white space.
+        if name.trim().is_empty() {
+            return refuse(
+                "instanceName is NULL, empty or only white space: expected a name with at least one other character".into(),
+            );
         }
         if fmu_type != CO_SIMULATION {
             return refuse(format!(
@@ -253,28 +260,40 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
 /// `c` from fmi2Instantiate.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2EnterInitializationMode(c: Component) -> Status {
-    with_instance(c, |instance| instance.enter_initialization_mode())
+    with_instance(c, |instance| {
+        instance.trace(|| "fmi2EnterInitializationMode()".into());
+        instance.enter_initialization_mode()
+    })
 }
 
 /// # Safety
 /// `c` from fmi2Instantiate.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Component) -> Status {
-    with_instance(c, |instance| instance.exit_initialization_mode())
+    with_instance(c, |instance| {
+        instance.trace(|| "fmi2ExitInitializationMode()".into());
+        instance.exit_initialization_mode()
+    })
 }
 
 /// # Safety
 /// `c` from fmi2Instantiate.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2Terminate(c: Component) -> Status {
-    with_instance(c, |instance| instance.terminate())
+    with_instance(c, |instance| {
+        instance.trace(|| "fmi2Terminate()".into());
+        instance.terminate()
+    })
 }
 
 /// # Safety
 /// `c` from fmi2Instantiate.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2Reset(c: Component) -> Status {
-    with_instance(c, |instance| instance.reset())
+    with_instance(c, |instance| {
+        instance.trace(|| "fmi2Reset()".into());
+        instance.reset()
+    })
 }
 
 fn is_real(kind: &Kind) -> bool {
@@ -520,6 +539,7 @@ pub unsafe extern "C" fn fmi2SetString(
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetFMUstate(c: Component, state: *mut FmuState) -> Status {
     with_instance(c, |instance| {
+        instance.trace(|| "fmi2GetFMUstate()".into());
         if let Err(status) = instance.check_phase("fmi2GetFMUstate", STATE_PHASES) {
             return status;
         }
@@ -561,6 +581,7 @@ fn own_snapshot<'a>(
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetFMUstate(c: Component, state: FmuState) -> Status {
     with_instance(c, |instance| {
+        instance.trace(|| format!("fmi2SetFMUstate({state:?})"));
         if let Err(status) = instance.check_phase("fmi2SetFMUstate", STATE_PHASES) {
             return status;
         }
@@ -658,6 +679,7 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     state: *mut FmuState,
 ) -> Status {
     with_instance(c, |instance| {
+        instance.trace(|| format!("fmi2DeSerializeFMUstate(size = {size})"));
         let Some(data) = slice(bytes as *const u8, size) else {
             return null_argument(instance, "fmi2DeSerializeFMUstate", "serializedState");
         };

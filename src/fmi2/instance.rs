@@ -569,11 +569,21 @@ impl Instance {
                 ));
             }
         }
+        // The step ends where the master's clock says, currentCommunicationPoint + step, not at
+        // our time + step: a master that computes its points as t0 + i h would otherwise drift
+        // away from our sum of steps by round-off until the check above refuses it.
+        let target = current_communication_point + step;
+        if target <= self.time {
+            return self.error(&format!(
+                "fmi2DoStep: t = {current_communication_point} + communicationStepSize = {step} does not move past t in double precision: expected a step above {:e}",
+                self.time.abs() * f64::EPSILON
+            ));
+        }
         let Some(scene) = self.scene.as_mut() else {
             return self
                 .error("fmi2DoStep: no scene: fmi2ExitInitializationMode has not succeeded");
         };
-        match scene.do_step(step, &self.values) {
+        match scene.do_step(target - self.time, &self.values) {
             Ok(()) => {
                 scene.write_outputs(&mut self.values);
                 // The scenes check their states; this is the last line of defence: no NaN ever

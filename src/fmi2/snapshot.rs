@@ -73,11 +73,35 @@ impl Snapshot {
                     .map_err(|message| format!("the FMU state holds {message}"))?;
             }
         }
+        // A model exists from fmi2ExitInitializationMode on, and only then.
+        let needs_scene = !matches!(self.phase, Phase::Instantiated | Phase::InitializationMode);
+        if needs_scene != self.scene.is_some() {
+            return Err(format!(
+                "the FMU state is in phase {} {} a model state: expected one {}",
+                self.phase.name(),
+                if needs_scene { "without" } else { "with" },
+                if needs_scene {
+                    "with it after fmi2ExitInitializationMode"
+                } else {
+                    "without it before"
+                }
+            ));
+        }
         let scene = match &self.scene {
             None => None,
             Some(state) => {
                 let mut scene = (instance.model.build)(&values, self.start_time, &instance.scope)?;
                 scene.restore(state)?;
+                // A scene whose clock is not the instance's would step from another time (a
+                // forged state could make a step that never ends).
+                // (A failed step may leave the model part-way; such a state is kept as it was.)
+                if scene.time() != self.time && self.phase != Phase::StepFailed {
+                    return Err(format!(
+                        "the FMU state's model is at t = {} but the state says t = {}: expected the same time",
+                        scene.time(),
+                        self.time
+                    ));
+                }
                 Some(scene)
             }
         };

@@ -302,7 +302,7 @@ pub const LOG_CATEGORIES: &[(&str, &str)] = &[
         "Calls that fail: wrong state, bad value, step not completed",
     ),
     ("logStatusWarning", "Calls that succeed with a caveat"),
-    ("logCalls", "Every FMI call with its arguments"),
+    ("logCalls", "The calls that change the instance, with their arguments: fmi2SetupExperiment, fmi2Enter/ExitInitializationMode, fmi2SetXXX, fmi2SetRealInputDerivatives, fmi2DoStep, fmi2Get/Set/DeSerializeFMUstate, fmi2Terminate, fmi2Reset"),
 ];
 
 /// Unit-less "1" is written without a unit attribute.

@@ -220,19 +220,24 @@ impl Scene for Drive {
     }
 
     fn save(&self) -> Vec<f64> {
-        vec![self.t, self.y[I], self.y[OMEGA], self.y[X]]
+        // The input rates pending for the next step are state too: a master that rolls back
+        // and retakes the step need not set them again (FMI 2.0, 2.1.8).
+        let [voltage_rate, force_rate] = self.input_rates;
+        vec![
+            self.t,
+            self.y[I],
+            self.y[OMEGA],
+            self.y[X],
+            voltage_rate,
+            force_rate,
+        ]
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
-        if state.len() != 4 || state.iter().any(|x| !x.is_finite()) {
-            return Err(format!(
-                "a DriveTrain state has 4 finite numbers, got {}",
-                state.len()
-            ));
-        }
+        super::check_saved("DriveTrain", state, 6)?;
         self.t = state[0];
-        self.y.copy_from_slice(&state[1..]);
-        self.input_rates = [0.0; 2];
+        self.y.copy_from_slice(&state[1..4]);
+        self.input_rates = [state[4], state[5]];
         Ok(())
     }
 

@@ -442,12 +442,7 @@ impl Scene for Longitudinal {
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
-        if state.len() != 8 || state.iter().any(|x| !x.is_finite()) {
-            return Err(format!(
-                "a LongitudinalFriction state has 8 finite numbers, got {}",
-                state.len()
-            ));
-        }
+        super::check_saved("LongitudinalFriction", state, 8)?;
         self.t = state[0];
         self.z = state[1];
         self.v_held = state[2];

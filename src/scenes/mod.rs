@@ -150,6 +150,23 @@ pub fn require_finite(values: &ValueSet, value_reference: u32) -> Result<f64, St
     require(values, value_reference, f64::is_finite, "a finite number")
 }
 
+/// Errs unless a saved state (`Scene::restore`'s input) has `expected` numbers, all finite.
+pub fn check_saved(model: &str, state: &[f64], expected: usize) -> Result<(), String> {
+    let bad = state.iter().filter(|x| !x.is_finite()).count();
+    if state.len() != expected {
+        Err(format!(
+            "a {model} state has {expected} numbers, got {}",
+            state.len()
+        ))
+    } else if bad > 0 {
+        Err(format!(
+            "a {model} state has {expected} finite numbers, got {bad} that are not"
+        ))
+    } else {
+        Ok(())
+    }
+}
+
 /// Errs when a contact has created energy: `dissipated` (the friction work minus `stored`, the
 /// energy in the deflection) is below zero by more than `tolerance` times the energies it is the
 /// difference of, plus `resolved`, the least energy the solver resolves (0 for a fixed step). A

@@ -53,6 +53,20 @@ impl PeriodMean {
         }
     }
 
+    /// The time derivative of [`PeriodMean::value`]: 0 once a period has completed (the value
+    /// is held until the next one closes); before, that of the running mean, (F - mean) / (t -
+    /// start), and F'/2 at the start itself.
+    pub fn rate(&self, t: f64, instantaneous: f64, instantaneous_rate: f64) -> f64 {
+        if self.completed > 0 {
+            0.0
+        } else if t > self.start_time {
+            let elapsed = t - self.start_time;
+            (instantaneous - self.integral / elapsed) / elapsed
+        } else {
+            0.5 * instantaneous_rate
+        }
+    }
+
     pub fn save(&self) -> [f64; 3] {
         [self.completed as f64, self.integral, self.last_mean]
     }

@@ -746,7 +746,8 @@ impl Scene for Transverse {
     }
 
     fn save(&self) -> Vec<f64> {
-        let mut state = vec![self.t, self.vd_held];
+        // The pending rate of vd_in is state too (FMI 2.0, 2.1.8): see DriveTrain's.
+        let mut state = vec![self.t, self.vd_held, self.vd_rate];
         state.extend_from_slice(&self.y);
         state.extend(self.mean.save());
         match &self.solver {
@@ -759,23 +760,17 @@ impl Scene for Transverse {
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
-        let base = 2 + MAX_DIM + 3;
+        let base = 3 + MAX_DIM + 3;
         let extra = match &self.solver {
             Solver::TwoPhase(_) => two_phase::SAVED,
             _ => 1,
         };
-        if state.len() != base + extra || state.iter().any(|x| !x.is_finite()) {
-            return Err(format!(
-                "a TransverseFriction state with this solver has {} finite numbers, got {}",
-                base + extra,
-                state.len()
-            ));
-        }
+        super::check_saved("TransverseFriction (with this solver)", state, base + extra)?;
         self.t = state[0];
         self.vd_held = state[1];
-        self.y.copy_from_slice(&state[2..2 + MAX_DIM]);
-        self.mean.restore(&state[2 + MAX_DIM..base]);
-        self.vd_rate = 0.0;
+        self.vd_rate = state[2];
+        self.y.copy_from_slice(&state[3..3 + MAX_DIM]);
+        self.mean.restore(&state[3 + MAX_DIM..base]);
         match &mut self.solver {
             Solver::Dopri5(d) => d.h = state[base],
             Solver::Radau5(r) => r.h_next = state[base],
@@ -798,34 +793,88 @@ impl Scene for Transverse {
         Ok(())
     }
 
-    /// Fd' = kd (vd - x') + hd (vd' - x'') and x' (zero when the body is held).
+    /// Every output's first derivative, from the continuous-time equations at the current
+    /// state (with the two-phase solver too): x', y' and Fd' = kd (vd - x') + hd (vd' - x'')
+    /// exactly; s', beta' and W_diss' exactly from the bristle rate z'; FFx_mean's as
+    /// [`PeriodMean::rate`]; FF, FFx and FFy, which need the bristle's second derivative, as a
+    /// centred difference along the solution ([`Transverse::force_rates`]).
     fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {
-        let (vx, ax) = if self.p.held {
-            (0.0, 0.0)
+        let vd = self.drive_velocity_now(values);
+        let mut dydt = [0.0; MAX_DIM];
+        Equations::new(&self.p, vd, &[]).rhs(self.t, &self.y, &mut dydt);
+        let c = self.p.contact(self.t, &self.y);
+        let z = Vector2::new(self.y[ZX], self.y[ZY]);
+        // s' = e . z'; beta' from z = s (cos beta, -sin beta): beta' = -(z x z') / s^2 (0 on
+        // an undeflected bristle, whose direction is that of the slip).
+        let s_rate = c.e.dot(&c.zdot);
+        let beta_rate = if c.s > 0.0 {
+            -(z.x * c.zdot.y - z.y * c.zdot.x) / (c.s * c.s)
         } else {
-            let ffx = self.forces().1;
-            let fd = self.p.drive_force(&self.y, self.vd_now(values));
-            (self.y[VX], (fd - ffx) / self.p.m)
+            0.0
         };
-        match value_reference {
-            vr::FD => {
-                let rate = if self.drive == Drive::Input {
-                    self.vd_rate
-                } else {
-                    0.0
-                };
-                Ok(self.p.kd * (self.vd_now(values) - vx) + self.p.hd * (rate - ax))
+        Ok(match value_reference {
+            vr::FD => self.p.kd * (vd.v0 - dydt[X]) + self.p.hd * (vd.rate - dydt[VX]),
+            vr::X => dydt[X],
+            vr::Y => dydt[Y],
+            vr::S => s_rate,
+            vr::BETA => beta_rate,
+            vr::W_DISS => dydt[W] - self.p.law.kt * c.s * s_rate,
+            vr::FF => self.force_rates(&dydt)[0],
+            vr::FFX => self.force_rates(&dydt)[1],
+            vr::FFY => self.force_rates(&dydt)[2],
+            vr::FFX_MEAN => {
+                let ffx = self.forces().1;
+                self.mean.rate(self.t, ffx, self.force_rates(&dydt)[1])
             }
-            vr::X => Ok(vx),
-            _ => Err(
-                "only Fd and x have first derivatives here (the contact forces' would need the bristle's second derivative)"
-                    .to_string(),
-            ),
-        }
+            _ => {
+                return Err(format!(
+                    "value reference {value_reference} has no derivative here: expected an output"
+                ))
+            }
+        })
     }
 }
 
 impl Transverse {
+    /// The drive velocity over the coming step as the outputs see it: vd_in's current value
+    /// and the rate set for the step when it is the source.
+    fn drive_velocity_now(&self, values: &ValueSet) -> DriveVelocity {
+        DriveVelocity {
+            v0: self.vd_now(values),
+            rate: if self.drive == Drive::Input {
+                self.vd_rate
+            } else {
+                0.0
+            },
+            t0: self.t,
+        }
+    }
+
+    /// (FF, FFx, FFy)' as the centred difference of the forces at t +- eps along the
+    /// equations' tangent y +- eps y': the terms of second order in eps cancel, so the error
+    /// is of order (eps / T)^2 for the fastest time scale T met. eps is a millionth of the
+    /// vibration's 1/(2 pi f), at most 1 ns (the Stribeck band is crossed in about 100 ns at
+    /// the paper's values: 1e-4 relative there, 1e-10 in steady sliding), and at least 64
+    /// ulps of t, so that round-off stays small.
+    fn force_rates(&self, dydt: &[f64; MAX_DIM]) -> [f64; 3] {
+        let t = self.t;
+        let eps = (1e-6 / (TAU * self.p.f))
+            .min(1e-9)
+            .max(64.0 * f64::EPSILON * t.abs());
+        let forces_at = |tau: f64| {
+            let mut y = [0.0; MAX_DIM];
+            for ((y, y0), d) in y.iter_mut().zip(&self.y).zip(dydt) {
+                *y = y0 + tau * d;
+            }
+            let c = self.p.contact(t + tau, &y);
+            [c.ff, c.ffx(), c.ffy()]
+        };
+        // The offsets t +- eps actually represent, so that the difference is over them.
+        let (ahead, behind) = ((t + eps) - t, t - (t - eps));
+        let (plus, minus) = (forces_at(ahead), forces_at(-behind));
+        [0, 1, 2].map(|k| (plus[k] - minus[k]) / (ahead + behind))
+    }
+
     /// vd as the outputs see it: vd_in's current value when it is the source (Fd's hd term
     /// follows an input set after the last step).
     fn vd_now(&self, values: &ValueSet) -> f64 {

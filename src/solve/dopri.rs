@@ -765,10 +765,7 @@ impl Dopri5 {
                     let fac = (SAFETY * retry.err.powf(-0.2)).clamp(0.1, 0.9);
                     self.h = h_kink * fac;
                     if self.h < h_tiny {
-                        return Err(format!(
-                            "dopri5: the step fell to {} s at t = {t}; the solution is not smooth enough for rtol {}",
-                            self.h, self.rtol
-                        ));
+                        return Err(self.step_fell(t, h_tiny));
                     }
                     continue;
                 }
@@ -778,10 +775,7 @@ impl Dopri5 {
                 let fac = (SAFETY * tr.err.powf(-0.2)).clamp(0.1, 0.9);
                 self.h = h * fac;
                 if self.h < h_tiny {
-                    return Err(format!(
-                        "dopri5: the step fell to {} s at t = {t}; the solution is not smooth enough for rtol {}",
-                        self.h, self.rtol
-                    ));
+                    return Err(self.step_fell(t, h_tiny));
                 }
                 continue;
             }
@@ -856,6 +850,14 @@ impl Dopri5 {
             }
         }
         Ok(())
+    }
+
+    /// Why the integration stopped when the step fell below the shortest that t resolves.
+    fn step_fell(&self, t: f64, h_tiny: f64) -> String {
+        format!(
+            "dopri5: the step fell to {:e} s at t = {t:e}, below the {h_tiny:e} s that t resolves: the solution is not smooth enough there for rtol {:e}, or t is too far from 0 for its time scales",
+            self.h, self.rtol
+        )
     }
 
     /// Hairer's starting step: a step whose Euler error would be about the tolerance.

@@ -474,7 +474,7 @@ impl Radau5 {
             let h_try = if clamped { remaining } else { h };
             if !clamped && h_try <= shortest(t) {
                 return Err(format!(
-                    "Radau5: the step fell to {h_try} s at t = {t}, the shortest that t resolves; the solution changes too fast there for rtol {} and atol {}: loosen them",
+                    "Radau5: the step fell to {h_try:e} s at t = {t:e}, the shortest that t resolves; the solution changes too fast there for rtol {:e} and atol {:e}: loosen them, or start nearer t = 0",
                     self.rtol, self.atol
                 ));
             }

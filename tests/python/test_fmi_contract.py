@@ -16,7 +16,7 @@ from ctypes import byref, c_size_t, c_void_p
 
 import pytest
 from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import fmi2FMUstate
+from fmpy.fmi2 import fmi2FMUstate, fmi2LastSuccessfulTime
 
 from conftest import Slave, unzipped
 
@@ -280,8 +280,36 @@ def test_wrong_communication_point_or_step_is_refused_and_the_instance_goes_on(m
     refused(slave, lambda: fmu.doStep(math.nan, h), "fmi2DoStep", "but was NaN")
     for step in (0.0, -0.0, -h, math.nan, math.inf, -math.inf):
         refused(slave, lambda: fmu.doStep(h, step), "fmi2DoStep", "communicationStepSize", "expected a finite step > 0")
+    # Regression: Rust spells 1e300 out in 301 digits; messages give such numbers as 1e300.
+    refused(slave, lambda: fmu.doStep(1e300, h), "fmi2DoStep", "but was 1e300")
     fmu.doStep(h, h)  # still usable
     slave.free()
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_the_master_clock_is_followed_not_the_sum_of_steps(model):
+    """Regression: time was the sum of the steps, and a master computing t_i = t0 + i h, whose
+    points round-off moves a hair from that sum at each step, was refused once the gap grew past
+    1e-12 (after 1e5 steps). Here the master's clock gains 2e-13 s a step: each point is within
+    the check's 1e-12 of where the last step ended, the sum of the steps drifts past it within
+    100 steps."""
+    slave = in_state(model, SC)
+    h = default_step(model)
+    for i in range(1, 300):
+        slave.fmu.doStep(i * (h + 2e-13), h)
+    # The last step ended where the master's clock put it, not at the sum of the steps.
+    end = 299 * (h + 2e-13) + h
+    assert abs(slave.fmu.getRealStatus(fmi2LastSuccessfulTime) - end) <= 4e-16 * end
+    slave.free()
+
+
+def test_a_step_lost_to_the_round_off_of_t_is_refused():
+    """Regression: at startTime 1e6 a step of 1e-11 s returned OK and time stood still."""
+    for model in MODELS:
+        slave = Slave(model)
+        slave.initialize(start_time=1e6)
+        refused(slave, lambda: slave.fmu.doStep(1e6, 1e-11), "fmi2DoStep", "does not move past t")
+        slave.free()
 
 
 def test_step_past_the_stop_time_is_refused():
@@ -369,8 +397,24 @@ def test_corrupted_state_with_a_matching_checksum_is_refused(model):
         forged = slave.fmu.deSerializeFMUstate(forge(data, index, math.nan))
         refused(slave, lambda: slave.fmu.setFMUstate(forged), "fmi2SetFMUstate", variable.name, "expected a finite number")
         slave.fmu.freeFMUstate(forged)
+    # Regression: start, time and last successful time all at -1e300 (in order, so the bytes
+    # load) and the model's own clock left where it was: the next doStep never returned.
+    far = forge(forge(forge(data, 1, -1e300), 3, -1e300), 4, -1e300)
+    forged = slave.fmu.deSerializeFMUstate(far)
+    refused(slave, lambda: slave.fmu.setFMUstate(forged), "fmi2SetFMUstate", "expected the same time")
+    slave.fmu.freeFMUstate(forged)
     slave.fmu.doStep(default_step(model), default_step(model))
     slave.free()
+    # Regression: a state of a new instance (no model yet) relabelled StepComplete was taken,
+    # and the next doStep said fmi2ExitInitializationMode had not succeeded.
+    fresh = in_state(model, I)
+    state = fresh.fmu.getFMUstate()
+    data = fresh.fmu.serializeFMUstate(state)
+    forged = fresh.fmu.deSerializeFMUstate(forge(data, 0, PHASE_CODE[SC]))
+    refused(fresh, lambda: fresh.fmu.setFMUstate(forged), "fmi2SetFMUstate", "StepComplete without a model state")
+    for s in (state, forged):
+        fresh.fmu.freeFMUstate(s)
+    fresh.free()
 
 
 @pytest.mark.parametrize("model", MODELS)

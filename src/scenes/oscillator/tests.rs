@@ -355,6 +355,30 @@ fn rk4_converges_on_the_paper_case() {
     assert!(ratio > 7.0, "error ratio {ratio}");
 }
 
+/// Regression: a motion that sticks in the transition band (forcing 0.001 N against h = 100 N,
+/// slope C = h/D = 125 N.s/m) made rk4 at 128 steps a period gain energy at every step, with
+/// W_diss at 3e4 J after 20 periods and every step reported as done. The slope now sets the
+/// stability bound: the step is refused, and 1024 steps a period, within the bound, run.
+#[test]
+fn rk4_refuses_a_step_the_friction_slope_makes_unstable() {
+    let mut v = with_solver("linear", "rk4");
+    v.set(vr::H, 100.0);
+    v.set(vr::P, 0.001);
+    let period = std::f64::consts::TAU / v.real(vr::W);
+    let mut scene = Oscillator::new(&v, 0.0).unwrap();
+    let refused = scene.do_step(period, &v).unwrap_err();
+    assert!(refused.contains("friction slope"), "{refused}");
+    v.set(vr::STEPS_PER_PERIOD, 1024.0);
+    let mut scene = Oscillator::new(&v, 0.0).unwrap();
+    for _ in 0..20 {
+        scene.do_step(period, &v).unwrap();
+    }
+    // The forcing's work is at most P times the path, a few 1e-6 m here.
+    let mut out = v.clone();
+    scene.write_outputs(&mut out);
+    assert!(out.real(vr::W_DISS) < 1e-6, "{}", out.real(vr::W_DISS));
+}
+
 /// u_amplitude and W_diss hidden: only the motion read.
 fn motion_scope() -> Scope {
     Scope::hiding(vec![vr::U_AMPLITUDE, vr::W_DISS, vr::H_OUT, vr::C_OUT])

@@ -70,6 +70,49 @@ fn fd_and_x_derivatives_match_their_difference_quotients() {
     let q_x = (after.real(vr::X) - before.real(vr::X)) / h;
     assert!((q_fd - d_fd).abs() < 1e-4 * d_fd.abs(), "{q_fd} vs {d_fd}");
     assert!((q_x - d_x).abs() < 1e-4 * d_x.abs(), "{q_x} vs {d_x}");
-    assert!(scene.output_derivative(vr::FF, &v).is_err());
+    assert!(scene.output_derivative(vr::KT, &v).is_err());
     assert!(scene.set_input_derivative(vr::FD, 1.0).is_err());
+}
+
+/// Oracle: every output's difference quotient over a 10 ns step against the mean of its
+/// derivative at the step's two ends (the trapezoid rule: their gap is of order h^2), in the
+/// vibrating slide of the paper's case: in the first period, where FFx_mean is the running
+/// mean, and in the tenth, where it is held.
+#[test]
+fn every_output_derivative_matches_its_difference_quotient() {
+    let mut v = values("dopri5", "free");
+    v.set(vr::TOLERANCE, 1e-12);
+    let mut scene = Transverse::new(&v, 0.0).unwrap();
+    let outputs = TABLE
+        .variables
+        .iter()
+        .filter(|var| var.causality == crate::interface::variable::Causality::Output);
+    let outputs: Vec<_> = outputs.collect();
+    let period = 1.0 / scene.p.f;
+    for t in [0.37 * period, 9.37 * period] {
+        scene.do_step(t - scene.time(), &v).unwrap();
+        let h = 1e-8;
+        let mut before = v.clone();
+        scene.write_outputs(&mut before);
+        let d0: Vec<f64> = outputs
+            .iter()
+            .map(|var| scene.output_derivative(var.value_reference, &v).unwrap())
+            .collect();
+        scene.do_step(h, &v).unwrap();
+        let mut after = v.clone();
+        scene.write_outputs(&mut after);
+        for (var, d0) in outputs.iter().zip(d0) {
+            let r = var.value_reference;
+            let d1 = scene.output_derivative(r, &v).unwrap();
+            let mean = 0.5 * (d0 + d1);
+            let quotient = (after.real(r) - before.real(r)) / h;
+            // The quotient's round-off: a few ulps of the output over h.
+            let round_off = 8.0 * f64::EPSILON * after.real(r).abs() / h;
+            assert!(
+                (quotient - mean).abs() <= 1e-6 * mean.abs() + round_off,
+                "{} at t = {t}: quotient {quotient}, derivative {mean}",
+                var.name
+            );
+        }
+    }
 }
