@@ -204,7 +204,13 @@ pub fn print(rows: &[Row], out: &mut dyn std::io::Write) -> std::io::Result<()> 
     )?;
     writeln!(out, "|---|---|---|---|---|---|---|---|---|---|")?;
     for r in rows {
-        let message: String = r.message.chars().take(150).collect();
+        // The reason, without fmi2DoStep's preamble (the step and time are in the row).
+        const PREAMBLE_END: &str = "could not be completed: ";
+        let reason = r
+            .message
+            .find(PREAMBLE_END)
+            .map_or(r.message.as_str(), |i| &r.message[i + PREAMBLE_END.len()..]);
+        let message: String = reason.chars().take(200).collect();
         let least = if r.least_dissipation.is_finite() {
             format!("{:.1e}", r.least_dissipation)
         } else {
