@@ -162,9 +162,10 @@ pub unsafe extern "C" fn fmi2Instantiate(
         let guid = text(fmu_guid).unwrap_or("");
         let location = text(fmu_resource_location);
         if let Some(location) = location {
-            if !location.is_empty() && !location.starts_with("file:") {
+            let absolute_path = location.starts_with('/');
+            if !location.is_empty() && !location.starts_with("file:") && !absolute_path {
                 return refuse(format!(
-                    "fmuResourceLocation \"{location}\": expected a file: URI"
+                    "fmuResourceLocation \"{location}\": expected a file: URI (or an absolute path)"
                 ));
             }
         }

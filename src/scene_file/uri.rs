@@ -3,8 +3,12 @@
 use std::path::PathBuf;
 
 /// `file:///a/b%20c`, `file:/a/b` or `file://localhost/a/b` to `/a/b c`; Windows drive paths
-/// (`file:///C:/x`) lose the slash before the drive.
+/// (`file:///C:/x`) lose the slash before the drive; a plain absolute path `/a/b` stays as it is.
 pub fn file_path(uri: &str) -> Result<PathBuf, String> {
+    // Some importers pass a plain absolute path, as FMI 1.0's fmuLocation could be: take it.
+    if uri.starts_with('/') {
+        return Ok(PathBuf::from(uri));
+    }
     let rest = uri
         .strip_prefix("file:")
         .ok_or_else(|| format!("\"{uri}\" is not a file: URI: expected file:///..."))?;
@@ -68,7 +72,9 @@ mod tests {
         assert_eq!(p("file:/tmp/x"), Ok(PathBuf::from("/tmp/x")));
         assert_eq!(p("file://localhost/tmp/x/"), Ok(PathBuf::from("/tmp/x/")));
         assert_eq!(p("file:///C:/fmu/res"), Ok(PathBuf::from("C:/fmu/res")));
+        assert_eq!(p("/tmp/a b/res"), Ok(PathBuf::from("/tmp/a b/res")));
         assert!(p("http://x/y").unwrap_err().contains("not a file: URI"));
+        assert!(p("tmp/x").unwrap_err().contains("not a file: URI"));
         assert!(p("file://server/share").unwrap_err().contains("host"));
         assert!(p("file:///a%2").unwrap_err().contains("%-escape"));
         assert!(p("file:///a%zz").unwrap_err().contains("%-escape"));

@@ -290,6 +290,17 @@ def test_tampered_or_missing_scene_resource_is_refused(packed, tmp_path):
     s.free()
 
 
+def test_a_plain_absolute_resource_path_is_taken_like_its_file_uri(packed, monkeypatch):
+    """Some importers pass fmuResourceLocation as a plain path (FMI 1.0's habit); a scene FMU,
+    which reads resources/scene.toml, runs from it as from the file: URI."""
+    scene, path = packed["fig4a"]
+    monkeypatch.setattr(pathlib.PurePath, "as_uri", lambda self: str(self))
+    s = slave(path, "plain path")
+    s.initialize()
+    s.fmu.doStep(0.0, scene["experiment"]["step"])
+    s.free()
+
+
 @pytest.mark.parametrize("change, fragments", [
     (("solver = \"dopri5\"", "solver = \"dopri5\"\ncolour = 1"), ["unknown field `colour`"]),
     (("eta = 0.71", "eta = 1.5"), ["key `parameters.eta`", "expected 0 <= eta <= 1"]),
