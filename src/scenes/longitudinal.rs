@@ -107,7 +107,7 @@ impl Longitudinal {
         let fc = mu * m * g;
         if !(fc.is_normal() && fc > 0.0) {
             return Err(format!(
-                "the Coulomb force FC = mu m g = {fc} N: expected a finite FC > 0 (check m, mu, g)"
+                "the Coulomb force FC = mu m g = {fc} N: expected a finite FC of at least 2.2e-308 N, the least normal number (check m, mu, g)"
             ));
         }
         let kt = require_positive(values, vr::KT)?;
