@@ -134,7 +134,6 @@ pub unsafe extern "C" fn fmi2Instantiate(
         let Some(callback) = functions.logger else {
             return std::ptr::null_mut();
         };
-        let utf8 = !instance_name.is_null() && text(instance_name).is_some();
         let name = text(instance_name).unwrap_or("");
         let logger = Logger::new(Some(callback), functions.component_environment, name);
         let refuse = |message: String| {
@@ -145,7 +144,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
             );
             std::ptr::null_mut()
         };
-        if !utf8 && !instance_name.is_null() {
+        if !instance_name.is_null() && text(instance_name).is_none() {
             return refuse("instanceName is not valid UTF-8: expected a UTF-8 name".into());
         }
         // FMI 2.0, 2.1.5: at least one character that is not white space.
