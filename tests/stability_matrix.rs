@@ -3,7 +3,7 @@
 //! the exported fmi2* functions, and convergence of each solver at a stiff setting.
 //!
 //! Oracles: the FMI contract (fmi2OK with finite outputs, or fmi2Discard/fmi2Error with a logged
-//! message and lastSuccessfulTime at the stop, never NaN); passivity of the contact (W_diss, the
+//! message, lastSuccessfulTime at the stop and the outputs of that time, never NaN); passivity of the contact (W_diss, the
 //! friction work minus the stored energy, never below zero beyond round-off); a solver run
 //! tighter lands closer to its own far tighter run than a looser one does.
 //! `cargo test --release --test stability_matrix -- --nocapture` prints the matrix.

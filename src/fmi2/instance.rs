@@ -64,6 +64,10 @@ pub const READABLE: &[Phase] = &[
 ];
 /// The phases in which inputs and parameters may be set.
 pub const WRITABLE: &[Phase] = &[Instantiated, InitializationMode, StepComplete];
+/// The most numbers a scene's saved state holds (TransverseFriction with two_phase: 22), with
+/// room to spare; `rollback_buffer_fits_every_scene` checks it.
+const ROLLBACK_CAPACITY: usize = 64;
+
 /// The phases in which an FMU state may be taken or restored.
 pub const STATE_PHASES: &[Phase] = &[
     Instantiated,
@@ -96,6 +100,10 @@ pub struct Instance {
     pub last_successful_time: f64,
     /// Addresses of the FMU states this instance handed out and has not freed.
     pub snapshots: Vec<usize>,
+    /// The scene's state at the start of the step under way, to roll a failed step back to
+    /// lastSuccessfulTime. Room for every scene's state from the start, so that fmi2DoStep
+    /// never allocates (also after an FMU state with another solver is restored).
+    rollback: Vec<f64>,
     /// Input derivatives set before the scene exists (handed to it when it is built); once it
     /// exists they go straight to it. Capacity for every input, so setting never allocates.
     pending_derivatives: Vec<(u32, f64)>,
@@ -126,6 +134,7 @@ impl Instance {
             time: 0.0,
             last_successful_time: 0.0,
             snapshots: Vec::new(),
+            rollback: Vec::with_capacity(ROLLBACK_CAPACITY),
             pending_derivatives: Vec::with_capacity(
                 model
                     .table
@@ -583,6 +592,7 @@ impl Instance {
             return self
                 .error("fmi2DoStep: no scene: fmi2ExitInitializationMode has not succeeded");
         };
+        scene.save_into(&mut self.rollback);
         match scene.do_step(target - self.time, &self.values) {
             Ok(()) => {
                 scene.write_outputs(&mut self.values);
@@ -607,17 +617,61 @@ impl Instance {
                 Status::Ok
             }
             Err(message) => {
+                // Back to where the step started, so that outputs, their derivatives and FMU
+                // states read now are those of lastSuccessfulTime, not of a model stopped
+                // half-way (or of one that broke down: a non-finite state).
+                if let Err(why) = scene.restore(&self.rollback) {
+                    self.phase = Error;
+                    return self.error(&format!(
+                        "fmi2DoStep: the step from t = {current_communication_point} by {step} could not be completed ({message}), nor rolled back: {why}"
+                    ));
+                }
                 self.phase = StepFailed;
                 self.last_successful_time = self.time;
                 self.logger.log(
                     Status::Discard,
                     CATEGORY_ERROR,
                     &format!(
-                        "fmi2DoStep: the step from t = {current_communication_point} by {step} could not be completed: {message}; lastSuccessfulTime = {}",
+                        "fmi2DoStep: the step from t = {current_communication_point} by {step} could not be completed: {message}; the model is back at lastSuccessfulTime = {}",
                         self.last_successful_time
                     ),
                 );
                 Status::Discard
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ROLLBACK_CAPACITY;
+    use crate::interface::values::ValueSet;
+    use crate::report::stability::solvers;
+    use crate::scenes::{Scope, MODELS};
+
+    /// fmi2DoStep saves the scene into a buffer of this capacity before every step; a state
+    /// that did not fit would allocate there.
+    #[test]
+    fn rollback_buffer_fits_every_scene() {
+        for model in MODELS {
+            let table = model.table;
+            let id = table.model_identifier;
+            let mut items = solvers(id).into_iter().map(Some).collect::<Vec<_>>();
+            items.push(None);
+            for solver in items {
+                let mut values = ValueSet::start(table);
+                if let Some(solver) = solver {
+                    let var = table.by_name("solver").expect("a solver parameter");
+                    let code = solvers(id).iter().position(|s| *s == solver).unwrap() + 1;
+                    values.set(var.value_reference, code as f64);
+                }
+                let scene = (model.build)(&values, 0.0, &Scope::full())
+                    .unwrap_or_else(|e| panic!("{id} {solver:?}: {e}"));
+                let saved = scene.save().len();
+                assert!(
+                    saved <= ROLLBACK_CAPACITY,
+                    "{id} {solver:?}: {saved} numbers"
+                );
             }
         }
     }

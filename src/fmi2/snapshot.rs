@@ -93,9 +93,9 @@ impl Snapshot {
                 let mut scene = (instance.model.build)(&values, self.start_time, &instance.scope)?;
                 scene.restore(state)?;
                 // A scene whose clock is not the instance's would step from another time (a
-                // forged state could make a step that never ends).
-                // (A failed step may leave the model part-way; such a state is kept as it was.)
-                if scene.time() != self.time && self.phase != Phase::StepFailed {
+                // forged state could make a step that never ends). A failed step is rolled
+                // back, so this holds in StepFailed too.
+                if scene.time() != self.time {
                     return Err(format!(
                         "the FMU state's model is at t = {} but the state says t = {}: expected the same time",
                         scene.time(),

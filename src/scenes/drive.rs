@@ -219,18 +219,19 @@ impl Scene for Drive {
         self.t
     }
 
-    fn save(&self) -> Vec<f64> {
+    fn save_into(&self, out: &mut Vec<f64>) {
         // The input rates pending for the next step are state too: a master that rolls back
         // and retakes the step need not set them again (FMI 2.0, 2.1.8).
         let [voltage_rate, force_rate] = self.input_rates;
-        vec![
+        out.clear();
+        out.extend_from_slice(&[
             self.t,
             self.y[I],
             self.y[OMEGA],
             self.y[X],
             voltage_rate,
             force_rate,
-        ]
+        ]);
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {

@@ -433,12 +433,11 @@ impl Scene for Longitudinal {
         self.t
     }
 
-    fn save(&self) -> Vec<f64> {
-        let mut state = vec![self.t, self.z, self.v_held];
-        state.extend(self.mean.save());
-        state.push(self.solver.step_hint());
-        state.push(self.friction_work);
-        state
+    fn save_into(&self, out: &mut Vec<f64>) {
+        out.clear();
+        out.extend_from_slice(&[self.t, self.z, self.v_held]);
+        out.extend_from_slice(&self.mean.save());
+        out.extend_from_slice(&[self.solver.step_hint(), self.friction_work]);
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {

@@ -25,8 +25,17 @@ pub trait Scene: Send {
     /// The scene's current time.
     fn time(&self) -> f64;
 
-    /// The dynamic state as numbers (parameters live in the [`ValueSet`]).
-    fn save(&self) -> Vec<f64>;
+    /// Writes the dynamic state as numbers into `out`, replacing what it held (parameters
+    /// live in the [`ValueSet`]). Into a buffer the caller keeps: fmi2DoStep saves the state
+    /// before every step, to roll a failed step back, and allocates nothing.
+    fn save_into(&self, out: &mut Vec<f64>);
+
+    /// The dynamic state as numbers, in a new vector.
+    fn save(&self) -> Vec<f64> {
+        let mut state = Vec::new();
+        self.save_into(&mut state);
+        state
+    }
 
     /// Restores a state written by [`Scene::save`] of a scene built from the same values.
     fn restore(&mut self, state: &[f64]) -> Result<(), String>;

@@ -469,12 +469,13 @@ impl Scene for Oscillator {
         self.state.t
     }
 
-    fn save(&self) -> Vec<f64> {
+    fn save_into(&self, out: &mut Vec<f64>) {
         let step_hint = match &self.core {
             Core::Regularized(_, solver) => solver.step_hint(),
             Core::Exact(_) => 0.0,
         };
-        vec![
+        out.clear();
+        out.extend_from_slice(&[
             self.state.t,
             self.state.u,
             self.state.v,
@@ -485,7 +486,7 @@ impl Scene for Oscillator {
             self.amplitude.last,
             step_hint,
             self.state.dissipated,
-        ]
+        ]);
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {

@@ -745,18 +745,18 @@ impl Scene for Transverse {
         self.t
     }
 
-    fn save(&self) -> Vec<f64> {
+    fn save_into(&self, out: &mut Vec<f64>) {
         // The pending rate of vd_in is state too (FMI 2.0, 2.1.8): see DriveTrain's.
-        let mut state = vec![self.t, self.vd_held, self.vd_rate];
-        state.extend_from_slice(&self.y);
-        state.extend(self.mean.save());
+        out.clear();
+        out.extend_from_slice(&[self.t, self.vd_held, self.vd_rate]);
+        out.extend_from_slice(&self.y);
+        out.extend_from_slice(&self.mean.save());
         match &self.solver {
-            Solver::Dopri5(d) => state.push(d.h),
-            Solver::Radau5(r) => state.push(r.h_next),
-            Solver::Rk4 { .. } | Solver::Exponential(_) => state.push(0.0),
-            Solver::TwoPhase(tp) => state.extend(tp.save()),
+            Solver::Dopri5(d) => out.push(d.h),
+            Solver::Radau5(r) => out.push(r.h_next),
+            Solver::Rk4 { .. } | Solver::Exponential(_) => out.push(0.0),
+            Solver::TwoPhase(tp) => out.extend_from_slice(&tp.save()),
         }
-        state
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {

@@ -212,6 +212,54 @@ def test_the_step_failed_recipes_really_fail_the_step():
         slave.free()
 
 
+# Steps that fail part-way, after good ones: two_phase at 1 Hz creates energy in its sixth
+# step (the stability matrix's case), and a drive velocity of 1e300 m/s, set after ten steps,
+# is finite and accepted but beyond any step.
+DISCARDED_PART_WAY = {
+    "two_phase at 1 Hz": ({"f": 1.0, "initial": "sliding", "solver": "two_phase"}, 1e-3, None),
+    "vd_in 1e300": ({"drive_source": "input"}, 1 / 60000, ("vd_in", 1e300, 10)),
+}
+
+
+@pytest.mark.parametrize("case", DISCARDED_PART_WAY)
+def test_a_discarded_step_leaves_the_model_where_the_step_started(case):
+    """Regression: after fmi2Discard the model stayed where the failed step stopped, so outputs
+    read in StepFailed came from a model part-way through the step or from a non-finite state
+    ("FF is NaN"). Oracle: the values read just before the step, at lastSuccessfulTime, for
+    the outputs and their derivatives; a state taken in StepFailed is at that time too."""
+    params, h, late_input = DISCARDED_PART_WAY[case]
+    slave = Slave("TransverseFriction")
+    slave.initialize(**params)
+    fmu = slave.fmu
+    outputs = [v.valueReference for v in variables("TransverseFriction", "output", "Real")]
+    for i in range(20):
+        if late_input and i == late_input[2]:
+            fmu.setReal([slave.vr[late_input[0]]], [late_input[1]])
+        before = fmu.getReal(outputs)
+        rates = fmu.getRealOutputDerivatives(outputs, [1] * len(outputs))
+        try:
+            fmu.doStep(i * h, h)
+        except FMICallException as error:
+            assert error.status == 2, slave.last_message()  # fmi2Discard
+            break
+    else:
+        pytest.fail("every step succeeded: the case no longer fails part-way")
+    assert i > 0, "the first step failed: nothing to roll back to but the start"
+    message = slave.last_message()
+    assert fmu.getRealStatus(fmi2LastSuccessfulTime) == i * h
+    assert fmu.getReal(outputs) == before
+    assert fmu.getRealOutputDerivatives(outputs, [1] * len(outputs)) == rates
+    # The state taken now restores into a fresh instance at that time, with those outputs.
+    data = fmu.serializeFMUstate(fmu.getFMUstate())
+    other = Slave("TransverseFriction", "other")
+    other.initialize(**params)
+    other.fmu.setFMUstate(other.fmu.deSerializeFMUstate(data))
+    assert other.fmu.getReal(outputs) == before
+    assert "back at lastSuccessfulTime" in message, message
+    other.free()
+    slave.free()
+
+
 @pytest.mark.parametrize("model", MODELS)
 def test_unknown_value_references_are_refused(model):
     slave = in_state(model, SC)

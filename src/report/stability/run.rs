@@ -42,6 +42,9 @@ pub struct Row {
     pub nan: bool,
     /// Every output finite at every fmi2OK communication point.
     pub finite: bool,
+    /// After a failed step, the outputs read (or refused) exactly as at the last successful
+    /// communication point: the FMU rolled the step back.
+    pub rolled_back: bool,
     /// The least W_diss / (friction work + stored energy) over the communication points.
     pub least_dissipation: f64,
     /// W_diss at the last successful communication point.
@@ -60,7 +63,9 @@ impl Row {
                 // The FMU's clock adds steps; ours multiplies: equal to round-off.
                 let at_stop =
                     |t: f64| (t - self.t_reached).abs() <= 1e-12 * self.t_reached.max(1.0);
-                !self.message.is_empty() && self.last_successful.is_some_and(at_stop)
+                !self.message.is_empty()
+                    && self.last_successful.is_some_and(at_stop)
+                    && self.rolled_back
             }
         };
         !self.nan && self.finite && passive && explained
@@ -116,6 +121,7 @@ pub fn run(case: &Case) -> Row {
         message: String::new(),
         nan: false,
         finite: true,
+        rolled_back: true,
         least_dissipation: f64::INFINITY,
         w_diss: 0.0,
         seconds: 0.0,
@@ -162,6 +168,9 @@ pub fn run(case: &Case) -> Row {
         None => 0.0,
     };
     let mut values = vec![0.0; outputs.len()];
+    // The outputs at the last successful communication point, and whether they could be read.
+    let mut good = vec![0.0; outputs.len()];
+    let mut good_read = fmu.get_real_into(&outputs, &mut good);
     for k in 0..case.steps {
         let t = k as f64 * case.step;
         let status = fmu.do_step(t, case.step, true);
@@ -180,8 +189,11 @@ pub fn run(case: &Case) -> Row {
             row.message = message;
             let (answered, last) = fmu.get_real_status(LAST_SUCCESSFUL_TIME);
             row.last_successful = (answered == Status::Ok).then_some(last);
+            row.rolled_back = read == good_read && (read != Status::Ok || values == good);
             break;
         }
+        good.copy_from_slice(&values);
+        good_read = read;
         row.t_reached = t + case.step;
         row.finite &= read == Status::Ok && values.iter().all(|v| v.is_finite());
         if let Some(i) = w_diss {
@@ -196,7 +208,8 @@ pub fn run(case: &Case) -> Row {
 }
 
 /// The matrix as a Markdown table, one row per case, with a last column saying whether the row
-/// meets the contract (never NaN, finite when fmi2OK, passive, failures explained).
+/// meets the contract (never NaN, finite when fmi2OK, passive, failures explained and rolled
+/// back).
 pub fn print(rows: &[Row], out: &mut dyn std::io::Write) -> std::io::Result<()> {
     writeln!(
         out,
