@@ -232,12 +232,12 @@ fn mutate(rng: &mut Rng, pool: &[Vec<u8>]) -> (Vec<u8>, String) {
         4 => bytes.extend((0..rng.below(16)).map(|_| rng.next() as u8)),
         _ => {
             // Overwrite an 8-byte number in the body with a special value, then fix the checksum.
-            // One whole number: the serialized state is the magic word, the GUID's length and
-            // text, then 8-byte numbers, then the checksum.
+            // One whole number: the serialized state is the magic word, its length, the GUID's
+            // length and text, then 8-byte numbers, then the checksum.
             let guid_length = bytes
-                .get(8..12)
+                .get(16..20)
                 .map_or(0, |b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize);
-            let first = 12 + guid_length;
+            let first = 20 + guid_length;
             if bytes.len() >= first + 16 {
                 let body = bytes.len() - 8;
                 let at = first + 8 * rng.below((body - first) / 8);
@@ -1014,8 +1014,9 @@ fn outputs(table: &ModelTable) -> Vec<u32> {
 /// `value` and the checksum made to match.
 fn forge(bytes: &[u8], index: usize, value: f64) -> Vec<u8> {
     let mut bytes = bytes.to_vec();
-    let guid_length = u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize;
-    let at = 12 + guid_length + 8 * index;
+    // Magic word (8), length (8), GUID length (4), GUID.
+    let guid_length = u32::from_le_bytes([bytes[16], bytes[17], bytes[18], bytes[19]]) as usize;
+    let at = 20 + guid_length + 8 * index;
     bytes[at..at + 8].copy_from_slice(&value.to_le_bytes());
     let body = bytes.len() - 8;
     let sum = fnv1a(&bytes[..body]);

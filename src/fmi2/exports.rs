@@ -6,7 +6,7 @@
 use super::ffi::*;
 use super::instance::{Instance, Phase, READABLE, STATE_PHASES};
 use super::logger::Logger;
-use super::snapshot::Snapshot;
+use super::snapshot::{self, Snapshot};
 use crate::interface::variable::Kind;
 use crate::scene_file::registry::{self, Loaded};
 use crate::scenes::Model;
@@ -680,6 +680,18 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
 ) -> Status {
     with_instance(c, |instance| {
         instance.trace(|| format!("fmi2DeSerializeFMUstate(size = {size})"));
+        // The header first: a size beyond the length it declares is refused before the data
+        // is read that far.
+        let Some(header) = slice(bytes as *const u8, size.min(snapshot::HEADER)) else {
+            return null_argument(instance, "fmi2DeSerializeFMUstate", "serializedState");
+        };
+        if let Some(length) = snapshot::declared_length(header) {
+            if length != size as u64 {
+                return instance.error(&format!(
+                    "fmi2DeSerializeFMUstate: the serialized FMU state is not valid: size = {size}, but it says it is {length} bytes long; expected the size fmi2SerializedFMUstateSize gave"
+                ));
+            }
+        }
         let Some(data) = slice(bytes as *const u8, size) else {
             return null_argument(instance, "fmi2DeSerializeFMUstate", "serializedState");
         };

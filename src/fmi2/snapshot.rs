@@ -1,13 +1,27 @@
 //! FMU states: a full copy of an instance's dynamic data, and its byte form.
 //!
-//! The bytes carry a magic word, a format version, the model's GUID and a checksum, so truncated,
-//! corrupted or foreign data is refused with a message instead of being loaded.
+//! The bytes carry a magic word, a format version, their own length, the model's GUID and a
+//! checksum, so truncated, corrupted or foreign data is refused with a message instead of being
+//! loaded. The length comes right after the magic word: fmi2DeSerializeFMUstate compares it with
+//! the size it is given before reading further, so a size larger than the data is refused
+//! without reading past the data's end.
 
 use super::instance::{Instance, Phase};
 use crate::interface::values::check_value;
 use crate::interface::variable::{Causality, Kind};
 
-const MAGIC: &[u8; 8] = b"FRICFMU\x01";
+const MAGIC: &[u8; 8] = b"FRICFMU\x02";
+
+/// The magic word and the length: what [`declared_length`] reads.
+pub const HEADER: usize = MAGIC.len() + 8;
+
+/// The length the bytes of an FMU state say they have, from their first [`HEADER`] bytes; None
+/// when those are not this FMU's header.
+pub fn declared_length(header: &[u8]) -> Option<u64> {
+    let length = header.get(MAGIC.len()..HEADER)?;
+    (header[..MAGIC.len()] == *MAGIC)
+        .then(|| u64::from_le_bytes(length.try_into().unwrap_or([0; 8])))
+}
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Snapshot {
@@ -131,8 +145,10 @@ impl Snapshot {
         } else {
             numbers.push(-1.0);
         }
-        let mut bytes = Vec::with_capacity(8 + 4 + self.guid.len() + 8 * numbers.len() + 8);
+        let length = HEADER + 4 + self.guid.len() + 8 * numbers.len() + 8;
+        let mut bytes = Vec::with_capacity(length);
         bytes.extend(MAGIC);
+        bytes.extend((length as u64).to_le_bytes());
         bytes.extend((self.guid.len() as u32).to_le_bytes());
         bytes.extend(self.guid.as_bytes());
         for x in numbers {
@@ -146,10 +162,16 @@ impl Snapshot {
     /// Reads bytes written by [`Snapshot::to_bytes`] for the model with `guid`, owned by `owner`.
     pub fn from_bytes(bytes: &[u8], guid: &str, owner: u64) -> Result<Snapshot, String> {
         let corrupt = |what: &str| format!("the serialized FMU state is not valid: {what}");
-        if bytes.len() < MAGIC.len() + 4 + 8 || &bytes[..MAGIC.len()] != MAGIC {
+        let Some(length) = declared_length(bytes) else {
             return Err(corrupt(
                 "it does not start with this FMU's header (truncated or foreign data)",
             ));
+        };
+        if length != bytes.len() as u64 || bytes.len() < HEADER + 4 + 8 {
+            return Err(corrupt(&format!(
+                "it says it is {length} bytes long but {} were given (truncated, or a size other than fmi2SerializedFMUstateSize's)",
+                bytes.len()
+            )));
         }
         let (body, sum) = bytes.split_at(bytes.len() - 8);
         if checksum(body).to_le_bytes() != sum {
@@ -157,7 +179,7 @@ impl Snapshot {
                 "its checksum does not match (truncated or corrupted)",
             ));
         }
-        let mut rest = &body[MAGIC.len()..];
+        let mut rest = &body[HEADER..];
         let guid_len =
             u32::from_le_bytes(rest[..4].try_into().map_err(|_| corrupt("short header"))?) as usize;
         rest = &rest[4..];

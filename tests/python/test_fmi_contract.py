@@ -11,6 +11,7 @@ Oracle for the legal states: FMI 2.0.4, section 4.2.4 (state machine of a co-sim
 """
 import ctypes
 import math
+import pathlib
 import struct
 from ctypes import byref, c_size_t, c_void_p
 
@@ -113,9 +114,10 @@ def checksum(data):
 
 
 def serialized_layout(data):
-    """Offset of the first number of a serialized state: magic (8), GUID length (4), GUID."""
-    (guid_length,) = struct.unpack_from("<I", data, 8)
-    return 12 + guid_length
+    """Offset of the first number of a serialized state: magic (8), length (8), GUID length (4),
+    GUID."""
+    (guid_length,) = struct.unpack_from("<I", data, 16)
+    return 20 + guid_length
 
 
 def forge(data, index, value):
@@ -427,6 +429,47 @@ def test_truncated_or_corrupted_serialized_state_is_refused(model):
     slave.fmu.setFMUstate(restored)
     slave.fmu.freeFMUstate(restored)
     slave.free()
+
+
+# Serializes a state, puts its bytes at the very end of a readable page followed by one that
+# cannot be read, and deserializes them with a size 4096 bytes too large: reading past the data
+# ends the process with SIGSEGV. Run in its own process, so that a crash fails this test only.
+OVERSIZED = r"""
+import ctypes, mmap, sys
+from ctypes import byref, c_void_p
+sys.path.insert(0, sys.argv[1])
+from conftest import Slave
+slave = Slave("LongitudinalFriction")
+slave.initialize()
+fmu = slave.fmu
+data = fmu.serializeFMUstate(fmu.getFMUstate())
+page = mmap.PAGESIZE
+pages = mmap.mmap(-1, 2 * page)
+libc = ctypes.CDLL(None, use_errno=True)
+libc.mprotect.argtypes = [c_void_p, ctypes.c_size_t, ctypes.c_int]
+base = ctypes.addressof(ctypes.c_char.from_buffer(pages))
+PROT_NONE = 0
+assert libc.mprotect(base + page, page, PROT_NONE) == 0, ctypes.get_errno()
+pages[page - len(data):page] = data
+state = c_void_p()
+fmu.dll.fmi2DeSerializeFMUstate.argtypes = [c_void_p, c_void_p, ctypes.c_size_t, c_void_p]
+status = fmu.dll.fmi2DeSerializeFMUstate(fmu.component, base + page - len(data), len(data) + page, byref(state))
+print(status, slave.last_message())
+"""
+
+
+def test_a_size_larger_than_the_serialized_state_is_refused_without_reading_past_it():
+    """Regression: fmi2DeSerializeFMUstate ran its checksum over `size` bytes, so a size larger
+    than the data read past its end. Oracle: the data's own length, now in its header."""
+    import subprocess
+    import sys
+
+    here = str(pathlib.Path(__file__).parent)
+    run = subprocess.run([sys.executable, "-c", OVERSIZED, here], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, f"exit {run.returncode}: {run.stderr[-2000:]}"
+    status, message = run.stdout.strip().split(" ", 1)
+    assert status == "3", message  # fmi2Error
+    assert "is not valid" in message and "bytes long" in message, message
 
 
 @pytest.mark.parametrize("model", MODELS)
