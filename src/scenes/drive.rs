@@ -176,7 +176,8 @@ impl Drive {
 
 impl Scene for Drive {
     fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String> {
-        // The rates apply to this step only, whatever its outcome.
+        // The rates apply to this step only (fmi2DoStep restores them with the rest of the
+        // state when the step fails).
         let [voltage_rate, force_rate] = std::mem::take(&mut self.input_rates);
         if !(h > 0.0 && h.is_finite()) {
             return Err(format!("communication step {h} s: expected a step > 0"));

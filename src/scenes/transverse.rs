@@ -663,7 +663,8 @@ impl Scene for Transverse {
         if !(h > 0.0 && h.is_finite()) {
             return Err(format!("communication step {h} s: expected a step > 0"));
         }
-        // A derivative applies to this step only, whatever its outcome.
+        // A derivative applies to this step only (fmi2DoStep restores it with the rest of the
+        // state when the step fails).
         let rate = std::mem::take(&mut self.vd_rate);
         if self.drive == Drive::Input {
             let v = values.real(vr::VD_IN);
