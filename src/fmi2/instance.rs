@@ -656,21 +656,20 @@ mod tests {
         for model in MODELS {
             let table = model.table;
             let id = table.model_identifier;
-            let mut items = solvers(id).into_iter().map(Some).collect::<Vec<_>>();
-            items.push(None);
-            for solver in items {
+            // Each solver item by its code (items count from 1), and the model's defaults.
+            let codes = (1..=solvers(id).len()).map(Some).chain([None]);
+            for code in codes {
                 let mut values = ValueSet::start(table);
-                if let Some(solver) = solver {
+                if let Some(code) = code {
                     let var = table.by_name("solver").expect("a solver parameter");
-                    let code = solvers(id).iter().position(|s| *s == solver).unwrap() + 1;
                     values.set(var.value_reference, code as f64);
                 }
                 let scene = (model.build)(&values, 0.0, &Scope::full())
-                    .unwrap_or_else(|e| panic!("{id} {solver:?}: {e}"));
+                    .unwrap_or_else(|e| panic!("{id} solver {code:?}: {e}"));
                 let saved = scene.save().len();
                 assert!(
                     saved <= ROLLBACK_CAPACITY,
-                    "{id} {solver:?}: {saved} numbers"
+                    "{id} solver {code:?}: {saved} numbers"
                 );
             }
         }
