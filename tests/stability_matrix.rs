@@ -2,10 +2,11 @@
 //! each extreme the scene has a parameter for (src/report/stability.rs lists them), run through
 //! the exported fmi2* functions, and convergence of each solver at a stiff setting.
 //!
-//! Oracles: the FMI contract (fmi2OK with finite outputs, or fmi2Discard/fmi2Error with a logged
-//! message, lastSuccessfulTime at the stop and the outputs of that time, never NaN); passivity of the contact (W_diss, the
-//! friction work minus the stored energy, never below zero beyond round-off); a solver run
-//! tighter lands closer to its own far tighter run than a looser one does.
+//! Oracles: the FMI contract (fmi2OK with finite outputs; fmi2Warning with those and a logged
+//! message; or fmi2Discard/fmi2Error with a logged message, lastSuccessfulTime at the stop and
+//! the outputs of that time; never NaN); passivity of the contact (W_diss, the friction work
+//! minus the stored energy, never below zero beyond round-off); a solver run tighter lands
+//! closer to its own far tighter run than a looser one does.
 //! `cargo test --release --test stability_matrix -- --nocapture` prints the matrix.
 #![cfg(all(
     target_os = "linux",
@@ -80,7 +81,12 @@ fn final_output(
     assert_eq!(fmu.initialize(), Status::Ok, "{}", fmu.last_message());
     for k in 0..steps {
         let status = fmu.do_step(f64::from(k) * step, step, true);
-        assert_eq!(status, Status::Ok, "{params:?}: {}", fmu.last_message());
+        // fmi2Warning: dopri5 found the stiff setting stiff, and said so.
+        assert!(
+            matches!(status, Status::Ok | Status::Warning),
+            "{params:?}: {status:?} {}",
+            fmu.last_message()
+        );
     }
     let vr = table.by_name(output).unwrap().value_reference;
     fmu.get_real(&[vr]).1[0]

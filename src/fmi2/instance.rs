@@ -614,7 +614,15 @@ impl Instance {
                 }
                 self.time = scene.time();
                 self.last_successful_time = self.time;
-                Status::Ok
+                // A step that succeeded but left a warning (a solver that is a poor fit):
+                // fmi2Warning, with the message logged (FMI 2.0, 2.1.3).
+                match scene.take_warning() {
+                    Some(message) => {
+                        self.warning(&format!("fmi2DoStep: {message}"));
+                        Status::Warning
+                    }
+                    None => Status::Ok,
+                }
             }
             Err(message) => {
                 // Back to where the step started, so that outputs, their derivatives and FMU

@@ -433,6 +433,11 @@ impl Scene for Longitudinal {
         self.t
     }
 
+    fn take_warning(&mut self) -> Option<String> {
+        let t = self.solver.stiff_since()?;
+        Some(super::stiff_warning(t, "radau5 or exponential"))
+    }
+
     fn save_into(&self, out: &mut Vec<f64>) {
         out.clear();
         out.extend_from_slice(&[self.t, self.z, self.v_held]);

@@ -52,12 +52,26 @@ pub trait Scene: Send {
         Err(HELD_INPUTS.to_string())
     }
 
+    /// A warning the last step left for the user (logged, the step itself having succeeded):
+    /// once, then None. The default: none.
+    fn take_warning(&mut self) -> Option<String> {
+        None
+    }
+
     /// The first time derivative of an output now, where it is exact and cheap (the inputs'
     /// current values are in `values`); refuses the others (the default: all).
     fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {
         let _ = (value_reference, values);
         Err("this model gives no output derivatives (maxOutputDerivativeOrder = 0)".to_string())
     }
+}
+
+/// The warning of a scene whose dopri5 found the problem stiff from `t` on
+/// ([`crate::solve::stiffness`]); `instead` names the solvers to use.
+fn stiff_warning(t: f64, instead: &str) -> String {
+    format!(
+        "solver dopri5 found the problem stiff from t = {t:e} s on: its steps are held by its stability, not by the tolerance, so the run is slow (though accurate); {instead} takes far fewer steps here"
+    )
 }
 
 /// Why a scene without input derivatives refuses one.

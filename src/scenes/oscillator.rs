@@ -469,6 +469,14 @@ impl Scene for Oscillator {
         self.state.t
     }
 
+    fn take_warning(&mut self) -> Option<String> {
+        let Core::Regularized(_, solver) = &mut self.core else {
+            return None;
+        };
+        let t = solver.stiff_since()?;
+        Some(super::stiff_warning(t, "radau5"))
+    }
+
     fn save_into(&self, out: &mut Vec<f64>) {
         let step_hint = match &self.core {
             Core::Regularized(_, solver) => solver.step_hint(),

@@ -746,6 +746,14 @@ impl Scene for Transverse {
         self.t
     }
 
+    fn take_warning(&mut self) -> Option<String> {
+        let Solver::Dopri5(d) = &mut self.solver else {
+            return None;
+        };
+        let t = d.stiff_since()?;
+        Some(super::stiff_warning(t, "radau5 or exponential"))
+    }
+
     fn save_into(&self, out: &mut Vec<f64>) {
         // The pending rate of vd_in is state too (FMI 2.0, 2.1.8): see DriveTrain's.
         out.clear();

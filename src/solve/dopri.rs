@@ -15,6 +15,7 @@
 //! vibration).
 
 use super::narrow::{Narrow, Verdict, Watch};
+use super::stiffness::StiffnessTest;
 use super::{Integrator, Ode, Work, MAX_DIM};
 
 /// The most switching functions an ODE may report.
@@ -127,6 +128,8 @@ pub struct Dopri5 {
     pub h: f64,
     /// Give up (with an error) after this many steps in one call.
     pub max_steps: u64,
+    /// Whether stability rather than the tolerance holds the step ([`Dopri5::stiff_since`]).
+    stiffness: StiffnessTest,
 }
 
 const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
@@ -336,6 +339,7 @@ impl Dopri5 {
             h_max,
             h: 0.0,
             max_steps: super::MAX_STEPS_PER_DO_STEP,
+            stiffness: StiffnessTest::default(),
         }
     }
 
@@ -804,6 +808,10 @@ impl Dopri5 {
             }
             let full = first.is_none() && predicted.is_none();
             work.steps += 1;
+            if self.stiffness.due() {
+                let h_lambda = Self::h_lambda(&tr, h_taken, n);
+                self.stiffness.record(h_lambda, t + h_taken);
+            }
             prev = Some((t, h_taken, y_start, sw_start));
             t = if last && full { t1 } else { t + h_taken };
             y[..n].copy_from_slice(&tr.y_new[..n]);
@@ -850,6 +858,36 @@ impl Dopri5 {
             }
         }
         Ok(())
+    }
+
+    /// The step times the Jacobian's size along the difference of the last two stages, which
+    /// both fall on the step's end (Hairer's stiffness estimate). With the integrating factor,
+    /// that of the equations it leaves to the stages (the stages of u, and u's difference
+    /// between them: the factor g_s is the same for both).
+    fn h_lambda(tr: &Trial, h: f64, n: usize) -> f64 {
+        let (mut num, mut den) = (0.0, 0.0);
+        for j in 0..n {
+            // The two stages' arguments differ by h sum_r (A[6][r] - A[5][r]) k_r.
+            let mut du = 0.0;
+            for ((a6, a5), k) in A[6].iter().zip(&A[5]).zip(&tr.k) {
+                du += (a6 - a5) * k[j];
+            }
+            let dk = tr.k[6][j] - tr.k[5][j];
+            num += dk * dk;
+            den += h * h * du * du;
+        }
+        if den > 0.0 {
+            h * (num / den).sqrt()
+        } else {
+            0.0
+        }
+    }
+
+    /// The time from which the problem has been found stiff (stability, not the tolerance,
+    /// holding the step: [`crate::solve::stiffness`]), the first time it is asked after that
+    /// was found; None otherwise, and ever after.
+    pub fn stiff_since(&mut self) -> Option<f64> {
+        self.stiffness.take()
     }
 
     /// Why the integration stopped when the step fell below the shortest that t resolves.
@@ -966,6 +1004,63 @@ mod tests {
         fn decaying(&self) -> &[usize] {
             &[0]
         }
+    }
+
+    /// y' = -lambda (y - cos t), with no integrating factor.
+    struct Pulled {
+        lambda: f64,
+    }
+    impl Ode for Pulled {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
+            dydt[0] = -self.lambda * (y[0] - t.cos());
+        }
+    }
+
+    /// Oracle: Hairer's criterion, h |lambda| at dopri5's stability bound 3.3. At lambda = 1e5
+    /// over 1 s (about 30 000 steps, each held at h lambda ~ 3.3 where the tolerance would
+    /// allow far longer ones) the problem is found stiff, early and once. Not stiff: the decay
+    /// taken by the integrating factor, and lambda = 1 over 300 periods of the forcing (as many
+    /// steps, each set by the tolerance).
+    #[test]
+    fn finds_stiffness_where_stability_holds_the_step() {
+        let mut d = dopri(1e-6);
+        let mut work = Work::default();
+        d.integrate(&Pulled { lambda: 1e5 }, 0.0, 1.0, &mut [1.0], &mut work)
+            .unwrap();
+        assert!(work.steps > 20_000, "{work:?}");
+        let t = d.stiff_since().expect("found stiff");
+        assert!(t < 0.05, "found at t = {t}");
+        assert_eq!(d.stiff_since(), None, "reported once");
+
+        // A forcing fast enough that the tolerance holds the step to h lambda ~ 1, as on scene
+        // T (where slow forcing lets the step grow past the factor's cap, the rest of the decay
+        // falls to the stages and stability holds the step again).
+        let mut d = dopri(1e-6);
+        let relax = Relax {
+            lambda: 1e5,
+            forcing: |t| (1e4 * t).cos(),
+        };
+        let mut work = Work::default();
+        d.integrate_switched(&relax, 0.0, 0.2, &mut [0.0], &mut work)
+            .unwrap();
+        assert!(work.steps > 2_000, "{work:?}");
+        assert_eq!(d.stiff_since(), None, "with the integrating factor");
+
+        let mut d = dopri(1e-10);
+        let mut work = Work::default();
+        d.integrate(
+            &Pulled { lambda: 1.0 },
+            0.0,
+            600.0 * std::f64::consts::PI,
+            &mut [1.0],
+            &mut work,
+        )
+        .unwrap();
+        assert!(work.steps > 20_000, "{work:?}");
+        assert_eq!(d.stiff_since(), None, "lambda = 1");
     }
 
     fn dopri(rtol: f64) -> Dopri5 {

@@ -12,6 +12,7 @@ pub mod phase;
 pub mod radau;
 pub mod rk4;
 pub mod root;
+pub mod stiffness;
 
 /// The largest state vector any scene integrates (including quadrature states such as the
 /// running integral of a force or of its power).

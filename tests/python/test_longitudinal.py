@@ -201,6 +201,44 @@ def test_last_successful_time_and_terminated_status():
     slave.free()
 
 
+def run_with_statuses(kt, solver, periods=3, steps_per_period=20):
+    """Runs Dahl at Table 1's vc = 0.146 m/s; returns (doStep statuses, log, FT_mean)."""
+    slave = Slave(MODEL)
+    slave.initialize(law="dahl", vc=0.146, kt=kt, solver=solver)
+    (f,) = slave.get("f")
+    step = 1.0 / (f * steps_per_period)
+    # fmpy's doStep drops the status; its raw binding returns it.
+    statuses = [slave.fmu.fmi2DoStep(slave.fmu.component, k * step, step, 1)
+                for k in range(periods * steps_per_period)]
+    (ft_mean,) = slave.get("FT_mean")
+    messages = list(slave.messages)
+    slave.free()
+    return statuses, messages, ft_mean
+
+
+def test_dopri5_warns_once_where_the_problem_is_stiff():
+    """At kt x 1000 the bristle's relaxation holds dopri5's steps at its stability bound: the
+    step that finds it returns fmi2Warning with the reason and the solvers to use logged, once;
+    the run goes on to the same FT_mean as radau5's. At the paper's kt it does not warn."""
+    from fmpy.fmi2 import fmi2OK, fmi2Warning
+
+    statuses, messages, ft_mean = run_with_statuses(5.6e7, "dopri5")
+    assert statuses.count(fmi2Warning) == 1, statuses
+    assert set(statuses) == {fmi2OK, fmi2Warning}
+    warnings = [m for m in messages if m[0] == fmi2Warning]
+    assert len(warnings) == 1, messages
+    _, category, text = warnings[0]
+    assert category == "logStatusWarning"
+    for fragment in ("fmi2DoStep", "dopri5", "stiff from t =", "radau5 or exponential"):
+        assert fragment in text, text
+    _, _, ft_radau = run_with_statuses(5.6e7, "radau5")
+    assert ft_mean == pytest.approx(ft_radau, rel=1e-5)
+
+    statuses, messages, _ = run_with_statuses(5.6e4, "dopri5")
+    assert set(statuses) == {fmi2OK}
+    assert messages == []
+
+
 # --- refusals: an error status and a message naming what was wrong and what was expected ---
 
 

@@ -17,6 +17,9 @@ pub const PASSIVITY_SLACK: f64 = 1e-12;
 pub enum Outcome {
     /// Every communication step returned fmi2OK.
     Ok,
+    /// Every communication step completed; one or more returned fmi2Warning (the first
+    /// warning's message is kept).
+    Warning,
     /// A step returned fmi2Discard.
     Discard,
     /// A step returned fmi2Error (or worse).
@@ -58,7 +61,7 @@ impl Row {
         let passive = self.least_dissipation >= -PASSIVITY_SLACK;
         let explained = match self.outcome {
             Outcome::Ok => true,
-            Outcome::Refused => !self.message.is_empty(),
+            Outcome::Refused | Outcome::Warning => !self.message.is_empty(),
             Outcome::Discard | Outcome::Error => {
                 // The FMU's clock adds steps; ours multiplies: equal to round-off.
                 let at_stop =
@@ -180,7 +183,12 @@ pub fn run(case: &Case) -> Row {
         if read == Status::Ok {
             row.nan |= values.iter().any(|v| v.is_nan());
         }
-        if status != Status::Ok {
+        if status == Status::Warning {
+            if row.outcome == Outcome::Ok {
+                row.outcome = Outcome::Warning;
+                row.message = message;
+            }
+        } else if status != Status::Ok {
             row.outcome = if status == Status::Discard {
                 Outcome::Discard
             } else {
@@ -244,10 +252,15 @@ pub fn print(rows: &[Row], out: &mut dyn std::io::Write) -> std::io::Result<()> 
         )?;
     }
     let sound = rows.iter().filter(|r| r.sound()).count();
-    let ok = rows.iter().filter(|r| r.outcome == Outcome::Ok).count();
+    let ended = |r: &&Row| matches!(r.outcome, Outcome::Ok | Outcome::Warning);
+    let ok = rows.iter().filter(ended).count();
+    let warned = rows
+        .iter()
+        .filter(|r| r.outcome == Outcome::Warning)
+        .count();
     writeln!(
         out,
-        "\n{} cases: {ok} ran to the end, {} stopped with a logged reason; {sound} sound.",
+        "\n{} cases: {ok} ran to the end ({warned} of them with a warning), {} stopped with a logged reason; {sound} sound.",
         rows.len(),
         rows.len() - ok
     )

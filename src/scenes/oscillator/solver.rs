@@ -45,6 +45,14 @@ impl Solver {
         }
     }
 
+    /// Where dopri5 found the problem stiff, once ([`Dopri5::stiff_since`]).
+    pub fn stiff_since(&mut self) -> Option<f64> {
+        match self {
+            Solver::Dopri5(d) => d.stiff_since(),
+            _ => None,
+        }
+    }
+
     /// The step the adaptive solver would try next (part of the saved FMU state).
     pub fn step_hint(&self) -> f64 {
         match self {
