@@ -6,7 +6,6 @@ extracts each FMU once, keeps its shared library loaded, and instantiates it onc
 A refusal by the FMU (error, discard, fatal) becomes the row's status and message: a failed
 point never raises out of `run_point`.
 """
-import atexit
 import ctypes
 import hashlib
 import itertools
@@ -18,6 +17,7 @@ import tempfile
 import threading
 import time as clock
 from dataclasses import dataclass
+from multiprocessing import util
 
 import fmpy
 from fmpy.fmi2 import FMU2Slave
@@ -53,7 +53,10 @@ class _Loaded:
 
     def __init__(self, source):
         self.directory = tempfile.mkdtemp(prefix=f"friction_fmu_{source.digest}_")
-        atexit.register(shutil.rmtree, self.directory, True)
+        # Removed when this process exits, by multiprocessing's finalizers: they run at the exit
+        # of a pool worker as of the main process, where atexit handlers would not run in a
+        # worker (it leaves through os._exit).
+        util.Finalize(self, shutil.rmtree, args=(self.directory, True), exitpriority=0)
         if source.data is not None:
             archive = os.path.join(self.directory, "model.fmu")
             pathlib.Path(archive).write_bytes(source.data)
