@@ -3,7 +3,9 @@
 The FMUs are packed by `friction-fmu build` into fmu-out/ before pytest runs (tests/run.sh does
 both); a missing FMU is an error, never a skip.
 """
+import os
 import pathlib
+import tempfile
 
 import fmpy
 import pytest
@@ -41,6 +43,23 @@ def simulate(model_identifier, start_values=None, stop_time=None, step=None, out
 @pytest.fixture(scope="session")
 def root():
     return ROOT
+
+
+@pytest.fixture(scope="session", autouse=True)
+def temporary_files_under_basetemp(tmp_path_factory):
+    """Temporary files of the session (and of the processes it starts) go under pytest's base
+    directory, which keeps only the last few sessions: fmpy.simulate_fmu removes the FMU it
+    extracted only when the run succeeds, and many runs here are refused on purpose."""
+    directory = str(tmp_path_factory.mktemp("tmp"))
+    saved = tempfile.tempdir, os.environ.get("TMPDIR")
+    tempfile.tempdir = directory
+    os.environ["TMPDIR"] = directory
+    yield
+    tempfile.tempdir = saved[0]
+    if saved[1] is None:
+        del os.environ["TMPDIR"]
+    else:
+        os.environ["TMPDIR"] = saved[1]
 
 
 _UNZIPPED = {}
