@@ -53,8 +53,8 @@ class _Loaded:
 
     def __init__(self, source):
         self.directory = tempfile.mkdtemp(prefix=f"friction_fmu_{source.digest}_")
-        # Removed when this process exits, by multiprocessing's finalizers: they run at the exit
-        # of a pool worker as of the main process, where atexit handlers would not run in a
+        # Removed when this process exits, by multiprocessing's finalizers: they run when a pool
+        # worker exits as when the main process does, where atexit handlers do not run in a
         # worker (it leaves through os._exit).
         util.Finalize(self, shutil.rmtree, args=(self.directory, True), exitpriority=0)
         if source.data is not None:
