@@ -105,6 +105,10 @@ impl Ode for Equations {
             2
         }
     }
+    /// The work is a quadrature: the right-hand side reads (u, u') alone.
+    fn coupled(&self) -> usize {
+        2
+    }
     fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let (h, _, a) = self.evaluate(t, y[0], y[1]);
         dydt[0] = y[1];

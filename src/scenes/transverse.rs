@@ -36,16 +36,22 @@ use nalgebra::Vector2;
 use std::cell::Cell;
 use std::f64::consts::TAU;
 
+// The state: first what the right-hand side reads (the body's velocity, the drive spring, the
+// bristle), then the quadratures ([`Ode::coupled`]). The 1D equations ([`axial`]) use the same
+// places, with the y axis at rest.
 const DIM: usize = 9;
-const X: usize = 0;
-const VX: usize = 1;
-const ZX: usize = 2;
-const LAMBDA: usize = 3;
-const W: usize = 4;
-const Q: usize = 5;
-const Y: usize = 6;
-const VY: usize = 7;
-const ZY: usize = 8;
+const VX: usize = 0;
+const ZX: usize = 1;
+const LAMBDA: usize = 2;
+const VY: usize = 3;
+const ZY: usize = 4;
+/// The states the planar right-hand side reads, and those the 1D one reads.
+const COUPLED: usize = ZY + 1;
+const COUPLED_AXIAL: usize = LAMBDA + 1;
+const X: usize = 5;
+const W: usize = 6;
+const Q: usize = 7;
+const Y: usize = 8;
 
 /// Half-width of the band |v1 + v2| < BAND vs where ht and g vary; dopri5 ends steps on its
 /// edges and moves v1 + v2 by at most vs a step inside it ([`crate::solve::narrow`]), so the
@@ -253,13 +259,19 @@ impl Ode for Equations<'_> {
         DIM
     }
 
+    fn coupled(&self) -> usize {
+        COUPLED
+    }
+
     #[inline]
     fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let p = self.p;
         let c = p.contact_moving(y, self.support_velocity(t));
         let vd = self.vd.at(t);
         if p.held {
-            dydt[X..=VY].fill(0.0);
+            for j in [X, VX, Y, VY] {
+                dydt[j] = 0.0;
+            }
             dydt[LAMBDA] = vd;
         } else {
             let fd = p.drive_force(y, vd);
@@ -544,6 +556,12 @@ impl Transverse {
                 // The work is left out of the error control (an infinite atol): the steps the
                 // motion needs integrate it to the same order.
                 scale[W] = f64::INFINITY;
+                if trim.axial {
+                    // The 1D equations leave the y axis at rest: out of the error control, so
+                    // that its zeros do not dilute the others' errors.
+                    scale[VY] = f64::INFINITY;
+                    scale[ZY] = f64::INFINITY;
+                }
                 if name == "radau5" {
                     let mut radau = Radau5::new(rtol, rtol, 0.05 / f);
                     radau.atol_scale = scale;

@@ -33,6 +33,10 @@ impl Ode for Bristle<'_> {
     fn dim(&self) -> usize {
         self.dim
     }
+    /// q and w are quadratures: the right-hand side reads z alone.
+    fn coupled(&self) -> usize {
+        1
+    }
     fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let v = (self.velocity)(t);
         let (rate, force) = match self.law {

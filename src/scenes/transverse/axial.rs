@@ -5,10 +5,14 @@
 //! `FFx = FF e_x = kt z_x + ht(x') z_x' + hv x'`, `z_x' = x' - |x'|/g(x') z_x`, the power on
 //! the contact FF (v1 + v2) = FFx x'.
 //!
-//! The state is the general one's first `dim` entries, `[x, x', z_x, lambda, w, q]` (q only when
-//! the mean force is read), so the scene's outputs read it unchanged.
+//! The state is the general one's first `dim` entries, so the scene's outputs read it unchanged:
+//! `[x', z_x, lambda]`, which the right-hand side reads, then y' and z_y at rest and the
+//! quadratures `[x, w, q]` (q only when the mean force is read).
 
-use super::{band_coordinate, kink_switches, DriveVelocity, Params, BAND, LAMBDA, Q, VX, W, X, ZX};
+use super::{
+    band_coordinate, kink_switches, DriveVelocity, Params, BAND, COUPLED_AXIAL, LAMBDA, Q, VX, VY,
+    W, X, ZX, ZY,
+};
 use crate::solve::dopri::{Switching, MAX_SWITCHES};
 use crate::solve::narrow::Narrow;
 use crate::solve::Ode;
@@ -16,7 +20,7 @@ use crate::solve::Ode;
 pub struct Axial<'a> {
     pub p: &'a Params,
     pub vd: DriveVelocity,
-    /// 5 without the force integral q, 6 with it.
+    /// Without the force integral q, or with it (`Trim::dim`).
     pub dim: usize,
     /// Where steps also end inside the Stribeck band, as in the plane.
     pub band_points: &'static [f64],
@@ -37,6 +41,10 @@ impl Ode for Axial<'_> {
         self.dim
     }
 
+    fn coupled(&self) -> usize {
+        COUPLED_AXIAL
+    }
+
     fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let p = self.p;
         let v = self.velocity(y);
@@ -52,6 +60,8 @@ impl Ode for Axial<'_> {
         }
         dydt[ZX] = zdot;
         dydt[LAMBDA] = vd - v;
+        dydt[VY] = 0.0;
+        dydt[ZY] = 0.0;
         dydt[W] = ffx * v;
         if self.dim > Q {
             dydt[Q] = ffx;
