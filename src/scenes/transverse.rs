@@ -38,20 +38,21 @@ use std::f64::consts::TAU;
 
 // The state: first what the right-hand side reads (the body's velocity, the drive spring, the
 // bristle), then the quadratures ([`Ode::coupled`]). The 1D equations ([`axial`]) use the same
-// places, with the y axis at rest.
-const DIM: usize = 9;
-const VX: usize = 0;
-const ZX: usize = 1;
-const LAMBDA: usize = 2;
-const VY: usize = 3;
-const ZY: usize = 4;
+// places, with the y axis at rest. Public for code that restates the equations (the solver
+// comparison in benches/diffsol_compare).
+pub const DIM: usize = 9;
+pub const VX: usize = 0;
+pub const ZX: usize = 1;
+pub const LAMBDA: usize = 2;
+pub const VY: usize = 3;
+pub const ZY: usize = 4;
 /// The states the planar right-hand side reads, and those the 1D one reads.
-const COUPLED: usize = ZY + 1;
+pub const COUPLED: usize = ZY + 1;
 const COUPLED_AXIAL: usize = LAMBDA + 1;
-const X: usize = 5;
-const W: usize = 6;
-const Q: usize = 7;
-const Y: usize = 8;
+pub const X: usize = 5;
+pub const W: usize = 6;
+pub const Q: usize = 7;
+pub const Y: usize = 8;
 
 /// Half-width of the band |v1 + v2| < BAND vs where ht and g vary; dopri5 ends steps on its
 /// edges and moves v1 + v2 by at most vs a step inside it ([`crate::solve::narrow`]), so the

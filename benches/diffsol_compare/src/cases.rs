@@ -5,8 +5,10 @@ use friction_fmu::friction::lugre2d::SlipLaw;
 use friction_fmu::friction::regularized::Regularized;
 use friction_fmu::interface::transverse::{vr, TABLE};
 use friction_fmu::interface::values::ValueSet;
-use friction_fmu::scenes::oscillator::Equations;
-use friction_fmu::scenes::transverse::{Params, Transverse};
+use friction_fmu::scenes::oscillator::{Equations, Forced};
+use friction_fmu::scenes::transverse::{
+    Params, Transverse, COUPLED, DIM, LAMBDA, Q, VX, VY, W, X, Y, ZX, ZY,
+};
 use friction_fmu::scenes::Scene;
 use friction_fmu::solve::dopri::{Switching, MAX_SWITCHES};
 use friction_fmu::solve::Ode;
@@ -61,14 +63,17 @@ pub fn linear() -> Case {
 /// otherwise; the default experiment (0..120 pi, communication step pi/50, 6000 restarts).
 pub fn oscillator(d: f64) -> Case {
     let equations = Equations {
-        m: 1.0,
-        c: 0.1,
-        k: 1.0,
-        w: 1.0,
-        p: 4.0,
-        input: false,
+        plant: Forced {
+            m: 1.0,
+            c: 0.1,
+            k: 1.0,
+            w: 1.0,
+            p: 4.0,
+            input: false,
+        },
         held: 0.0,
         law: Regularized::Trigonometric { h: 1.6, d },
+        with_work: true,
     };
     Case {
         name: format!(
@@ -84,14 +89,6 @@ pub fn oscillator(d: f64) -> Case {
     }
 }
 
-// State layout of scene T (src/scenes/transverse.rs).
-const VX: usize = 1;
-const VY: usize = 3;
-const ZX: usize = 4;
-const ZY: usize = 5;
-const LAMBDA: usize = 6;
-const Q: usize = 7;
-const W: usize = 8;
 
 /// Scene T's ODE (paper T, continuous-time limit) for a prescribed drive velocity `vd`,
 /// built on the scene's public `Params::contact` and `Params::drive_force`; the scene's own
@@ -103,15 +100,18 @@ pub struct TransverseOde {
 
 impl Ode for TransverseOde {
     fn dim(&self) -> usize {
-        9
+        DIM
+    }
+    fn coupled(&self) -> usize {
+        COUPLED
     }
     fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let p = &self.p;
         let c = p.contact(t, y);
         let fd = p.drive_force(y, self.vd);
-        dydt[0] = y[VX];
+        dydt[X] = y[VX];
         dydt[VX] = (fd - c.ffx()) / p.m;
-        dydt[2] = y[VY];
+        dydt[Y] = y[VY];
         dydt[VY] = c.ffy() / p.m;
         dydt[LAMBDA] = self.vd - y[VX];
         dydt[ZX] = c.zdot.x;
@@ -167,17 +167,16 @@ pub fn transverse(kt_factor: f64, periods: usize, sliding: bool) -> Case {
     // The scene's absolute-tolerance scales (Transverse::new), with a finite one for the work.
     let z0 = scene.fc / p.law.kt;
     let speed = vd.abs() + p.va + p.law.vs;
-    let scale = vec![
-        z0,
-        speed,
-        z0,
-        speed,
-        z0,
-        z0,
-        if p.kd > 0.0 { scene.fc / p.kd } else { z0 },
-        scene.fc / p.f,
-        scene.fc * speed / p.f,
-    ];
+    let mut scale = vec![0.0; DIM];
+    scale[X] = z0;
+    scale[VX] = speed;
+    scale[Y] = z0;
+    scale[VY] = speed;
+    scale[ZX] = z0;
+    scale[ZY] = z0;
+    scale[LAMBDA] = if p.kd > 0.0 { scene.fc / p.kd } else { z0 };
+    scale[Q] = scene.fc / p.f;
+    scale[W] = scene.fc * speed / p.f;
     Case {
         name: format!(
             "scene T, slip law total, kt x {kt_factor}: 9 states, from {}, restart every period 1/{} s ({periods})",
@@ -186,8 +185,8 @@ pub fn transverse(kt_factor: f64, periods: usize, sliding: bool) -> Case {
         ),
         ode: Box::new(TransverseOde { p, vd }),
         switching: Some(Box::new(TransverseOde { p, vd })),
-        // The scene's saved state is [t, vd, y..].
-        y0: scene.save()[2..11].to_vec(),
+        // The scene's saved state is [t, vd, vd', y..].
+        y0: scene.save()[3..3 + DIM].to_vec(),
         t0: 0.0,
         grid: grid(0.0, 1.0 / p.f, periods),
         scale,

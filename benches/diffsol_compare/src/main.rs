@@ -8,7 +8,7 @@ mod run;
 
 use cases::Case;
 use friction_fmu::fmi2::cpu_clock::time_cpu;
-use friction_fmu::scenes::transverse::Transverse;
+use friction_fmu::scenes::transverse::{self, Transverse};
 use friction_fmu::scenes::Scene;
 use run::{run, Method, Run};
 
@@ -191,7 +191,7 @@ fn check_transverse(kt_factor: f64, periods: usize) {
     let case = cases::transverse(kt_factor, periods, true);
     let ours = run(&case, Method::Radau5Kinks, 1e-10, 1e-10).expect("restated ODE");
     let x_scene = scene.position().0;
-    let x_bench = ours.states.last().expect("states")[0];
+    let x_bench = ours.states.last().expect("states")[transverse::X];
     println!(
         "check: scene T (kt x {kt_factor}) after {periods} periods, x = {x_scene:.12e} from the scene, {x_bench:.12e} from the restated ODE (relative difference {:.1e})",
         ((x_scene - x_bench) / x_scene).abs()
