@@ -46,8 +46,9 @@ pub const ZX: usize = 1;
 pub const LAMBDA: usize = 2;
 pub const VY: usize = 3;
 pub const ZY: usize = 4;
-/// The states the planar right-hand side reads, and those the 1D one reads.
+/// The states the planar right-hand side reads.
 pub const COUPLED: usize = ZY + 1;
+/// The states the 1D right-hand side ([`axial`]) reads.
 const COUPLED_AXIAL: usize = LAMBDA + 1;
 pub const X: usize = 5;
 pub const W: usize = 6;

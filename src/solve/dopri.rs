@@ -391,7 +391,7 @@ impl Dopri5 {
         let mut tmp = [0.0; MAX_DIM];
         // The quadratures after the coupled states need no stage values: the right-hand side
         // does not read them, so the stages before the last (whose argument is y_new itself)
-        // carry the coupled states alone. On scene T that is 5 states of 9, and 6 % of the
+        // carry the coupled states alone. On scene T that is 5 states of 9, and about 3 % of the
         // step's time.
         let coupled = ode.coupled();
         debug_assert!(coupled <= n && decaying.iter().all(|j| j < coupled));

@@ -35,7 +35,7 @@ impl Ode for Bristle<'_> {
     }
     /// q and w are quadratures: the right-hand side reads z alone.
     fn coupled(&self) -> usize {
-        1
+        self.dim.min(1)
     }
     fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let v = (self.velocity)(t);
