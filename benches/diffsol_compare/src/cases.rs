@@ -7,7 +7,7 @@ use friction_fmu::interface::transverse::{vr, TABLE};
 use friction_fmu::interface::values::ValueSet;
 use friction_fmu::scenes::oscillator::{Equations, Forced};
 use friction_fmu::scenes::transverse::{
-    Params, Transverse, COUPLED, DIM, LAMBDA, Q, VX, VY, W, X, Y, ZX, ZY,
+    tolerance_scales, Params, Transverse, COUPLED, DIM, LAMBDA, Q, VX, VY, W, X, Y, ZX, ZY,
 };
 use friction_fmu::scenes::Scene;
 use friction_fmu::solve::dopri::{Switching, MAX_SWITCHES};
@@ -164,18 +164,9 @@ pub fn transverse(kt_factor: f64, periods: usize, sliding: bool) -> Case {
     let scene = Transverse::new(&values, 0.0).expect("scene T parameters");
     let p = scene.p;
     let vd = values.real(vr::VD);
-    // The scene's absolute-tolerance scales (Transverse::new), with a finite one for the work.
-    let z0 = scene.fc / p.law.kt;
+    // The scene's absolute-tolerance scales, with a finite one for the work.
     let speed = vd.abs() + p.va + p.law.vs;
-    let mut scale = vec![0.0; DIM];
-    scale[X] = z0;
-    scale[VX] = speed;
-    scale[Y] = z0;
-    scale[VY] = speed;
-    scale[ZX] = z0;
-    scale[ZY] = z0;
-    scale[LAMBDA] = if p.kd > 0.0 { scene.fc / p.kd } else { z0 };
-    scale[Q] = scene.fc / p.f;
+    let mut scale = tolerance_scales(&p, vd).to_vec();
     scale[W] = scene.fc * speed / p.f;
     Case {
         name: format!(
