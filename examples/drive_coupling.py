@@ -24,11 +24,14 @@ import csv
 import math
 import pathlib
 import shutil
+import sys
 
 import fmpy
 from fmpy.fmi2 import FMU2Slave
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "python"))
+from friction_fmu import switches  # noqa: E402
 FMU_DIR = ROOT / "fmu-out"
 REFERENCE = ROOT / "tests" / "reference" / "drive" / "reference.csv"
 
@@ -61,8 +64,9 @@ class Fmu:
         for name, value in values.items():
             var = self.vars[name]
             if isinstance(value, str):
-                item = next(i for i in var.declaredType.items if i.name == value)
-                self.slave.setInteger([var.valueReference], [int(item.value)])
+                self.slave.setInteger([var.valueReference], [switches.items(var)[value]])
+            elif var.type == "Integer":
+                self.slave.setInteger([var.valueReference], [int(value)])
             else:
                 self.slave.setReal([var.valueReference], [float(value)])
 

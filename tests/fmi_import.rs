@@ -50,7 +50,11 @@ fn pack(tag: &str) -> (PathBuf, PathBuf) {
     // A directory left over from an earlier run with the same process id.
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("create temp dir");
-    let fmu = friction_fmu::package::pack(MODEL, &cdylib(), &dir).expect("pack the FMU");
+    let library = friction_fmu::package::Library {
+        platform: "linux64",
+        path: cdylib(),
+    };
+    let fmu = friction_fmu::package::pack(MODEL, &[library], &dir).expect("pack the FMU");
     (dir, fmu)
 }
 
@@ -58,7 +62,7 @@ fn pack(tag: &str) -> (PathBuf, PathBuf) {
 /// TypeDefinitions are generated from (the fmi crate does not expose enumeration items).
 fn law_value(item: &str) -> i32 {
     let law = TABLE.by_name("law").expect("variable `law`");
-    let Kind::Enumeration { type_name, .. } = law.kind else {
+    let Kind::Switch { type_name, .. } = law.kind else {
         panic!("`law` is not an enumeration: {:?}", law.kind);
     };
     TABLE

@@ -83,7 +83,7 @@ fn tame(rng: &mut Rng, table: &ModelTable, var: &Variable, value: f64) -> f64 {
     let start = match var.kind {
         Kind::Real { start, .. } => start,
         Kind::Integer { start, .. } => f64::from(start),
-        Kind::Enumeration { .. } => return value,
+        Kind::Switch { .. } => return value,
     };
     let nominal = if start == 0.0 { 1.0 } else { start.abs() };
     let tamed = value.signum() * nominal * 10f64.powf(rng.unit() * 2.0 - 1.0);
@@ -150,7 +150,7 @@ fn integer_value(rng: &mut Rng, table: &ModelTable, var: Option<&Variable>) -> i
             2 => max,
             _ => start,
         },
-        Kind::Enumeration { type_name, start } => {
+        Kind::Switch { type_name, start } => {
             let items = table.enum_type(type_name).map_or(0, |e| e.items.len()) as i32;
             match rng.below(4) {
                 0 => rng.pick(&special),

@@ -107,7 +107,7 @@ fn full_model(table: &ModelTable, name: &str, enums: &[(u32, i32)]) -> Instance 
 
 fn item(table: &ModelTable, variable: &str, item: &str) -> (u32, i32) {
     let var = table.by_name(variable).expect("variable");
-    let Kind::Enumeration { type_name, .. } = var.kind else {
+    let Kind::Switch { type_name, .. } = var.kind else {
         panic!("{variable} is not an enumeration");
     };
     let value = table.enum_type(type_name).unwrap().value_of(item);
@@ -127,16 +127,19 @@ fn a_communication_step_does_not_allocate() {
     for model in MODELS {
         let table = model.table;
         let solver = table.by_name("solver").expect("every model has `solver`");
-        let Kind::Enumeration { type_name, .. } = solver.kind else {
+        let Kind::Switch { type_name, .. } = solver.kind else {
             panic!("{}: `solver` is not an enumeration", table.model_identifier);
         };
         let items = table.enum_type(type_name).expect("solver type").items;
         let outputs = real_outputs(&table.variables.iter().collect::<Vec<_>>());
+        // The inputs the default configuration reads (an input whose switch is off would be
+        // reported, which is no step's work).
         let master = Master {
             inputs: table
                 .variables
                 .iter()
                 .filter(|v| v.causality == Causality::Input)
+                .filter(|v| !table.input_switches.iter().any(|s| s.input == v.name))
                 .map(|v| (v.value_reference, 0.0))
                 .collect(),
             derivatives: None,

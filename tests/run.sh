@@ -1,17 +1,25 @@
 #!/usr/bin/env bash
 # Runs every test: formatting and lints, the Rust unit and integration tests (one of which loads
 # the packed FMU through the `fmi` crate), the call-sequence fuzzer once more under valgrind's
-# memcheck, then the fmpy tests against fmu-out/*.fmu.
-# Installs what it needs: libclang-dev (bindgen, for the `fmi` crate), valgrind, and a .venv with
-# fmpy.
+# memcheck, then the Python tests against fmu-out/: fmpy, the co-simulation engines libcosim and
+# ecos, and a C host natively and, on the win64 libraries, under wine.
+# Installs what it needs with apt (below) and a .venv with fmpy, the engines, and cargo-zigbuild
+# with ziglang (the linux64 library for glibc 2.17).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-if ! compgen -G "/usr/lib/llvm-*/lib/libclang*.so*" >/dev/null; then
-    echo "== installing libclang-dev (needed by the fmi crate's bindgen)"
+# libclang-dev: bindgen, for the fmi crate; valgrind: memcheck; libtbb12: ecos; mingw-w64,
+# rustc-web, cargo-web, rust-web-src: the win64 library; wine64: runs the C host on it.
+APT_PACKAGES="libclang-dev valgrind libtbb12 mingw-w64 rustc-web cargo-web rust-web-src wine64"
+missing=""
+for package in $APT_PACKAGES; do
+    dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing="$missing $package"
+done
+if [ -n "$missing" ]; then
+    echo "== installing$missing"
     SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
     $SUDO apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq libclang-dev >/dev/null
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $missing >/dev/null
 fi
 
 if [ ! -x .venv/bin/python ]; then
@@ -31,12 +39,10 @@ target/release/friction-fmu build scenes/*.toml --out fmu-out/scenes
 echo "== cargo test"
 cargo test --release
 echo "== fuzzing under valgrind memcheck (invalid reads and writes, use after free)"
-if ! command -v valgrind >/dev/null; then
-    SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-    $SUDO apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq valgrind >/dev/null
-fi
 FUZZ_BIN=$(cargo test --release --test fuzz_calls --no-run 2>&1 | grep -o 'target/release/deps/fuzz_calls-[0-9a-f]*' | head -1)
 FUZZ_SEQUENCES=20000 valgrind --error-exitcode=9 --leak-check=no -q "$FUZZ_BIN" random_call_sequences
-echo "== pytest (fmpy)"
+echo "== pytest (fmpy, libcosim, ecos, the C host natively and under wine)"
+# wine's prefix outside the source tree: cargo scans the package directory, and the prefix links
+# to /.
+export WINEPREFIX="${WINEPREFIX:-$HOME/.wine-friction-fmu}" WINEDEBUG=-all WINEDLLOVERRIDES="mscoree,mshtml="
 .venv/bin/python -m pytest tests/python

@@ -67,8 +67,7 @@ fn final_output(
             Value::Real(x) => fmu.set_real(&vr, &[x]),
             Value::Integer(n) => fmu.set_integer(&vr, &[n]),
             Value::Item(item) => {
-                let friction_fmu::interface::variable::Kind::Enumeration { type_name, .. } =
-                    var.kind
+                let friction_fmu::interface::variable::Kind::Switch { type_name, .. } = var.kind
                 else {
                     panic!("{name} is not an enumeration");
                 };

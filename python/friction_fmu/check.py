@@ -1,10 +1,12 @@
 """Up-front checks of a sweep against the FMU's modelDescription, before any point runs.
 
-A misspelt name, enumeration item or number would fail every point the same way (or, for a
+A misspelt name, switch item or number would fail every point the same way (or, for a
 heat map axis, fail after the whole sweep has run): each is refused here with a one-line
 ValueError saying what was given and what was expected.
 """
 import math
+
+from . import switches
 
 
 def plan(md, plan):
@@ -53,9 +55,9 @@ def view(plan, x, y, column, fixed):
 
 def _value(var, value):
     """One value for `var`, by its type: Real a finite or infinite number, Integer a whole
-    number, Boolean true/false/1/0, Enumeration an item's name or number."""
-    if var.type == "Enumeration":
-        items = {i.name: int(i.value) for i in var.declaredType.items}
+    number, Boolean true/false/1/0, a switch an item's name or number."""
+    items = switches.items(var)
+    if items is not None:
         if value in items or (_is_number(value) and value in items.values()):
             return
         listed = ", ".join(f"{name} ({number})" for name, number in items.items())

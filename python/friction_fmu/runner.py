@@ -22,6 +22,8 @@ from multiprocessing import util
 import fmpy
 from fmpy.fmi2 import FMU2Slave
 
+from . import switches
+
 STATUS = ["ok", "warning", "discard", "error", "fatal", "pending"]
 
 
@@ -129,9 +131,9 @@ def _set(fmu, fmu_vars, name, value):
         fmu.setReal(vr, [float(value)])
     elif var.type == "Boolean":
         fmu.setBoolean(vr, [str(value).lower() in ("1", "1.0", "true")])
-    elif var.type in ("Integer", "Enumeration"):
+    elif var.type == "Integer":
         if isinstance(value, str):
-            items = {i.name: int(i.value) for i in var.declaredType.items}
+            items = switches.items(var) or {}
             if value not in items:
                 raise ValueError(f"{name} = {value!r}: expected one of {sorted(items)}")
             value = items[value]

@@ -1,6 +1,7 @@
 //! friction-fmu: builds the FMUs and prints what they compute beside the papers.
 //!
-//!   friction-fmu build [--out DIR]   pack every model into DIR/<Model>.fmu (default fmu-out)
+//!   friction-fmu build [--out DIR]   pack every model into DIR/<Model>.fmu (default fmu-out) and
+//!                                    the drive-coupled system into DIR/DriveFriction.ssp
 //!   friction-fmu build FILE.toml... [--out DIR]
 //!                                    pack each scene file into DIR/<name>.fmu: the model's
 //!                                    library with only the variables the file keeps
@@ -16,10 +17,11 @@ use friction_fmu::{package, report, scene_file, scenes};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: friction-fmu [build [SCENE.toml...]|run|report] [--out DIR]\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out)\n          or, given scene files, each into DIR/<name>.fmu with only the variables it keeps\n  run     build, pack scenes/*.toml into DIR/scenes, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.svg (default DIR: report), trimmed against full scenes: DIR/trimmed.md";
+const USAGE: &str = "usage: friction-fmu [build [SCENE.toml...]|run|report] [--out DIR]\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out) and the drive-coupled system into DIR/DriveFriction.ssp\n          or, given scene files, each into DIR/<name>.fmu with only the variables it keeps\n  run     build, pack scenes/*.toml into DIR/scenes, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.svg (default DIR: report), trimmed against full scenes: DIR/trimmed.md";
 
-/// The FMU library built beside this program.
-fn library() -> Result<PathBuf, String> {
+/// The FMU libraries of every platform whose toolchain is installed; this machine's is the one
+/// built beside this program.
+fn libraries() -> Result<Vec<package::Library>, String> {
     let exe = std::env::current_exe().map_err(|e| format!("cannot locate this program: {e}"))?;
     let dir = exe.parent().ok_or("this program has no directory")?;
     let library = package::library_beside(dir);
@@ -29,12 +31,12 @@ fn library() -> Result<PathBuf, String> {
             library.display()
         ));
     }
-    Ok(library)
+    package::platforms::libraries(&library, Path::new(env!("CARGO_MANIFEST_DIR")))
 }
 
 /// Packs scene files; all are checked before any FMU is written.
 fn build_scenes(files: &[PathBuf], out: &Path) -> Result<(), String> {
-    let library = library()?;
+    let libraries = libraries()?;
     let scenes = files
         .iter()
         .map(|file| scene_file::read(file))
@@ -50,7 +52,7 @@ fn build_scenes(files: &[PathBuf], out: &Path) -> Result<(), String> {
         }
     }
     for scene in &scenes {
-        let path = package::pack_scene(scene, &library, out)
+        let path = package::pack_scene(scene, &libraries, out)
             .map_err(|e| format!("packing {}: {e}", scene.name))?;
         println!("wrote {}", path.display());
     }
@@ -58,12 +60,14 @@ fn build_scenes(files: &[PathBuf], out: &Path) -> Result<(), String> {
 }
 
 fn build(out: &Path) -> Result<(), String> {
-    let library = library()?;
+    let libraries = libraries()?;
     for model in scenes::MODELS {
-        let path = package::pack(model.table.model_identifier, &library, out)
+        let path = package::pack(model.table.model_identifier, &libraries, out)
             .map_err(|e| format!("packing {}: {e}", model.table.model_identifier))?;
         println!("wrote {}", path.display());
     }
+    let path = package::ssp::write(out).map_err(|e| format!("packing the system: {e}"))?;
+    println!("wrote {}", path.display());
     Ok(())
 }
 

@@ -301,7 +301,7 @@ fn is_real(kind: &Kind) -> bool {
 }
 
 fn is_integer(kind: &Kind) -> bool {
-    matches!(kind, Kind::Integer { .. } | Kind::Enumeration { .. })
+    matches!(kind, Kind::Integer { .. } | Kind::Switch { .. })
 }
 
 fn is_none(_: &Kind) -> bool {

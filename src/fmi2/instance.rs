@@ -7,6 +7,7 @@
 use super::ffi::Status;
 use super::logger::{Logger, CATEGORY_CALLS, CATEGORY_ERROR, CATEGORY_WARNING};
 use crate::interface::interpolates_inputs;
+use crate::interface::unread_inputs::UnreadInputs;
 use crate::interface::values::{check_value, ValueSet};
 use crate::interface::variable::{Causality, Kind, Variability, Variable, LOG_CATEGORIES};
 use crate::scenes::{Model, Scene, Scope, HELD_INPUTS};
@@ -107,6 +108,8 @@ pub struct Instance {
     /// Input derivatives set before the scene exists (handed to it when it is built); once it
     /// exists they go straight to it. Capacity for every input, so setting never allocates.
     pending_derivatives: Vec<(u32, f64)>,
+    /// Inputs set while their switch says they are not read.
+    unread_inputs: UnreadInputs,
 }
 
 impl Instance {
@@ -135,6 +138,7 @@ impl Instance {
             last_successful_time: 0.0,
             snapshots: Vec::new(),
             rollback: Vec::with_capacity(ROLLBACK_CAPACITY),
+            unread_inputs: UnreadInputs::default(),
             pending_derivatives: Vec::with_capacity(
                 model
                     .table
@@ -262,7 +266,13 @@ impl Instance {
                 self.time = self.start_time;
                 self.last_successful_time = self.start_time;
                 self.phase = StepComplete;
-                Status::Ok
+                match self.unread_inputs.start(self.model.table, &self.values) {
+                    Some(message) => {
+                        self.warning(&format!("fmi2ExitInitializationMode: {message}"));
+                        Status::Warning
+                    }
+                    None => Status::Ok,
+                }
             }
             Err(message) => self.error(&format!("fmi2ExitInitializationMode: {message}")),
         }
@@ -286,6 +296,7 @@ impl Instance {
         self.time = 0.0;
         self.last_successful_time = 0.0;
         self.pending_derivatives.clear();
+        self.unread_inputs.clear();
         Status::Ok
     }
 
@@ -422,8 +433,17 @@ impl Instance {
                 return self.error(&format!("{function}: {message}"));
             }
         }
+        let mut status = Status::Ok;
         for (i, &vr) in value_references.iter().enumerate() {
             self.values.set(vr, value_at(i));
+            let running = self.phase == StepComplete;
+            if let Some(message) =
+                self.unread_inputs
+                    .set(self.model.table, &self.values, vr, running)
+            {
+                self.warning(&format!("{function}: {message}"));
+                status = Status::Warning;
+            }
             // An input set again without a derivative is held (FMI 2.0, 4.2.1, leaves this
             // open; holding is what a master that sets no derivative expects).
             if interpolates_inputs(self.model.table)
@@ -436,7 +456,7 @@ impl Instance {
                 }
             }
         }
-        Status::Ok
+        status
     }
 
     /// fmi2SetRealInputDerivatives: first derivatives of inputs for the next fmi2DoStep only.

@@ -8,7 +8,7 @@
 //! The electrical time constant L/R is 0.2 ms, the mechanical one J R/(kt_m ke) 10 ms.
 
 use super::table::{enum_parameter, real_input, real_output, real_parameter, POSITIVE};
-use super::variable::{DefaultExperiment, EnumType, ModelTable, Variable};
+use super::variable::{DefaultExperiment, EnumType, InputSwitch, ModelTable, Variable};
 
 /// Value references.
 pub mod vr {
@@ -202,6 +202,11 @@ pub const TABLE: ModelTable = ModelTable {
     description: "DC motor, gear and lead screw whose nut drives a load: a linear drive model for co-simulation with TransverseFriction",
     variables: VARIABLES,
     enum_types: &[SOLVER, VOLTAGE_SOURCE],
+    input_switches: &[InputSwitch {
+        switch: "voltage_source",
+        item: "input",
+        input: "V_in",
+    }],
     default_experiment: DefaultExperiment {
         start_time: 0.0,
         // Five mechanical time constants: the start transient to steady speed.

@@ -4,7 +4,7 @@
 use super::table::{
     enum_parameter, integer_parameter, real_input, real_output, real_parameter, POSITIVE,
 };
-use super::variable::{DefaultExperiment, EnumType, ModelTable, Variable};
+use super::variable::{DefaultExperiment, EnumType, InputSwitch, ModelTable, Variable};
 
 /// Value references, named so the scene code reads like the paper.
 pub mod vr {
@@ -268,11 +268,17 @@ pub const TABLE: ModelTable = ModelTable {
     description: "Sliding friction under longitudinal tangential contact vibration: Coulomb, Dahl and LuGre (Leus & Gutowski 2008)",
     variables: VARIABLES,
     enum_types: &[LAW, VELOCITY_SOURCE, SOLVER],
+    input_switches: &[InputSwitch {
+        switch: "velocity_source",
+        item: "input",
+        input: "vr_in",
+    }],
     default_experiment: DefaultExperiment {
         start_time: 0.0,
-        // 40 vibration periods at 60 kHz, reported every 1/20 period.
-        stop_time: 40.0 / 60_000.0,
+        // 42 vibration periods at 60 kHz, reported every microsecond (a whole number of
+        // nanoseconds, as co-simulation engines' clocks need; 1/60 kHz is not).
+        stop_time: 7e-4,
         tolerance: 1e-6,
-        step_size: 1.0 / (20.0 * 60_000.0),
+        step_size: 1e-6,
     },
 };

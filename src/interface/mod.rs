@@ -8,6 +8,7 @@ pub mod longitudinal;
 pub mod oscillator;
 pub mod table;
 pub mod transverse;
+pub mod unread_inputs;
 pub mod values;
 pub mod variable;
 
@@ -32,7 +33,7 @@ pub fn interpolates_inputs(table: &variable::ModelTable) -> bool {
 #[cfg(test)]
 mod tests {
     use super::values::{check_value, ValueSet};
-    use super::variable::{Causality, Kind, NO_UNIT, UNITS};
+    use super::variable::{communication_grid, Causality, Kind, NO_UNIT, UNITS};
     use super::MODELS;
 
     /// Every table is self-consistent: unique names and value references, start values inside
@@ -69,7 +70,7 @@ mod tests {
                         a.name
                     );
                 }
-                if let Kind::Enumeration { type_name, .. } = a.kind {
+                if let Kind::Switch { type_name, .. } = a.kind {
                     assert!(
                         table.enum_type(type_name).is_some(),
                         "{}: no type {type_name}",
@@ -84,6 +85,36 @@ mod tests {
                         a.name
                     );
                 }
+            }
+            let experiment = table.default_experiment;
+            assert_eq!(
+                communication_grid(
+                    experiment.start_time,
+                    experiment.stop_time,
+                    experiment.step_size
+                )
+                .map(|_| ()),
+                Ok(()),
+                "{}: DefaultExperiment",
+                table.model_identifier
+            );
+            for governed in table.input_switches {
+                let Some(Kind::Switch { type_name, .. }) =
+                    table.by_name(governed.switch).map(|v| v.kind)
+                else {
+                    panic!(
+                        "{}: {} is not a switch",
+                        table.model_identifier, governed.switch
+                    );
+                };
+                assert!(table
+                    .enum_type(type_name)
+                    .and_then(|t| t.value_of(governed.item))
+                    .is_some());
+                assert_eq!(
+                    table.by_name(governed.input).map(|v| v.causality),
+                    Some(Causality::Input)
+                );
             }
         }
     }

@@ -4,7 +4,7 @@
 use super::table::{
     enum_parameter, integer_parameter, real_input, real_output, real_parameter, POSITIVE,
 };
-use super::variable::{DefaultExperiment, EnumType, ModelTable, Variable};
+use super::variable::{DefaultExperiment, EnumType, InputSwitch, ModelTable, Variable};
 
 /// Value references.
 pub mod vr {
@@ -212,13 +212,19 @@ pub const TABLE: ModelTable = ModelTable {
     description: "Forced oscillator with dry friction: regularised laws (paper O, eq. 4-9) and the exact switch model",
     variables: VARIABLES,
     enum_types: &[LAW, FORCE_SOURCE, SOLVER],
+    input_switches: &[InputSwitch {
+        switch: "force_source",
+        item: "input",
+        input: "P_in",
+    }],
     default_experiment: DefaultExperiment {
         start_time: 0.0,
-        // 60 forcing periods at w = 1: with c = 0.1 the free response decays as e^(-0.05 t), so
-        // the last periods are steady to about 1e-8; output every 1/100 period.
-        stop_time: 120.0 * core::f64::consts::PI,
+        // 60 forcing periods at w = 1 (377 s): with c = 0.1 the free response decays as
+        // e^(-0.05 t), so the last periods are steady to about 1e-8; output every 1/16 s, about
+        // 100 times a period (2 pi s is no whole number of nanoseconds, as engines' clocks need).
+        stop_time: 377.0,
         tolerance: 1e-9,
-        step_size: core::f64::consts::PI / 50.0,
+        step_size: 0.0625,
     },
 };
 

@@ -66,7 +66,7 @@ pub const fn enum_parameter(
         description,
         causality: Causality::Parameter,
         variability: Variability::Fixed,
-        kind: Kind::Enumeration { type_name, start },
+        kind: Kind::Switch { type_name, start },
         depends_on: &[],
     }
 }

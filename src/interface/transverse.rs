@@ -4,7 +4,7 @@
 use super::table::{
     enum_parameter, integer_parameter, real_input, real_output, real_parameter, POSITIVE,
 };
-use super::variable::{DefaultExperiment, EnumType, ModelTable, Variable};
+use super::variable::{DefaultExperiment, EnumType, InputSwitch, ModelTable, Variable};
 
 /// Value references, named so the scene code reads like the paper.
 pub mod vr {
@@ -322,13 +322,18 @@ pub const TABLE: ModelTable = ModelTable {
     description: "Sliding friction under transverse tangential vibration of the support: 2D LuGre contact, body on a compliant drive",
     variables: VARIABLES,
     enum_types: &[SLIP_LAW, SOLVER, DRIVE_SOURCE, BODY, INITIAL],
+    input_switches: &[InputSwitch {
+        switch: "drive_source",
+        item: "input",
+        input: "vd_in",
+    }],
     default_experiment: DefaultExperiment {
         start_time: 0.0,
         // 150 vibration periods at 3 kHz (the drive mode, ~200 Hz, settles in a few ms),
-        // reported 20 times a period.
+        // reported every 10 us, about 33 times a period (a whole number of nanoseconds).
         stop_time: 0.05,
         tolerance: 1e-10,
-        step_size: 1.0 / (20.0 * 3000.0),
+        step_size: 1e-5,
     },
 };
 

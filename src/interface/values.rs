@@ -19,7 +19,7 @@ impl ValueSet {
             .iter()
             .map(|v| match v.kind {
                 Kind::Real { start, .. } => start,
-                Kind::Enumeration { start, .. } | Kind::Integer { start, .. } => f64::from(start),
+                Kind::Switch { start, .. } | Kind::Integer { start, .. } => f64::from(start),
             })
             .collect();
         ValueSet { table, values }
@@ -52,7 +52,7 @@ impl ValueSet {
     pub fn item(&self, value_reference: u32) -> &'static str {
         let var = &self.table.variables[self.position(value_reference)];
         match var.kind {
-            Kind::Enumeration { type_name, .. } => self
+            Kind::Switch { type_name, .. } => self
                 .table
                 .enum_type(type_name)
                 .and_then(|e| e.item(self.integer(value_reference)))
@@ -114,7 +114,7 @@ pub fn check_value(table: &ModelTable, var: &Variable, value: f64) -> Result<(),
                 ));
             }
         }
-        Kind::Enumeration { type_name, .. } => {
+        Kind::Switch { type_name, .. } => {
             let items = table.enum_type(type_name).map(|e| e.items).unwrap_or(&[]);
             if value < 1.0 || value > items.len() as f64 {
                 let names: Vec<String> = items

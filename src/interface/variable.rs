@@ -31,8 +31,10 @@ pub enum Kind {
         min: f64,
         max: f64,
     },
-    /// An Enumeration (set with fmi2SetInteger); `items` index the model's enumeration types.
-    Enumeration { type_name: &'static str, start: i32 },
+    /// A switch: one of the numbered items of the model's enumeration type `type_name`. Declared
+    /// to importers as an Integer (1 to the number of items) whose type's description lists the
+    /// items, since co-simulation engines ignore FMI 2.0 Enumerations; set with fmi2SetInteger.
+    Switch { type_name: &'static str, start: i32 },
     /// An Integer with inclusive bounds.
     Integer { start: i32, min: i32, max: i32 },
 }
@@ -67,6 +69,17 @@ impl EnumType {
             .map(|i| i as i32 + 1)
     }
 
+    /// The items as importers read them: "1 split, 2 total".
+    pub fn listing(&self) -> String {
+        let items: Vec<String> = self
+            .items
+            .iter()
+            .enumerate()
+            .map(|(i, (name, _))| format!("{} {name}", i + 1))
+            .collect();
+        items.join(", ")
+    }
+
     /// The item name of an integer value.
     pub fn item(&self, value: i32) -> Option<&'static str> {
         usize::try_from(value - 1)
@@ -97,6 +110,36 @@ pub struct DefaultExperiment {
     pub step_size: f64,
 }
 
+/// An input that the model reads only when a switch has one item (`drive_source = input` reads
+/// `vd_in`); with any other item, setting the input has no effect.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct InputSwitch {
+    pub switch: &'static str,
+    pub item: &'static str,
+    pub input: &'static str,
+}
+
+/// Checks that an experiment's communication grid suits every importer: the step a whole number
+/// of nanoseconds (libcosim's clock counts them), and `start + n step` equal to `stop` in double
+/// precision for a whole n, so a master that computes its points as `start + i step` neither
+/// stops short nor asks for a step past `stop`. Returns n.
+pub fn communication_grid(start: f64, stop: f64, step: f64) -> Result<u64, String> {
+    let nanoseconds = step * 1e9;
+    if (nanoseconds - nanoseconds.round()).abs() > 1e-6 || nanoseconds < 0.5 {
+        return Err(format!(
+            "step = {step}: expected a whole number of nanoseconds (co-simulation engines such as libcosim count time in ns)"
+        ));
+    }
+    let n = ((stop - start) / step).round();
+    if !(n >= 1.0 && start + n * step == stop) {
+        return Err(format!(
+            "step = {step}: expected stop - start = {} to be a whole number of steps, start + n step = stop in double precision",
+            stop - start
+        ));
+    }
+    Ok(n as u64)
+}
+
 /// Everything modelDescription.xml says about one model.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ModelTable {
@@ -104,6 +147,8 @@ pub struct ModelTable {
     pub description: &'static str,
     pub variables: &'static [Variable],
     pub enum_types: &'static [EnumType],
+    /// The inputs each switch governs.
+    pub input_switches: &'static [InputSwitch],
     pub default_experiment: DefaultExperiment,
 }
 

@@ -96,26 +96,44 @@ impl<'a> Interface<'a> {
                 min,
                 max,
             } => KindXml::Integer {
+                declared_type: None,
                 start: start.map_or(table_start, |x| x as i32),
                 min,
                 max,
             },
-            Kind::Enumeration {
+            Kind::Switch {
                 type_name,
                 start: table_start,
-            } => KindXml::Enumeration {
-                declared_type: type_name,
+            } => KindXml::Integer {
+                declared_type: Some(type_name),
                 start: start.map_or(table_start, |x| x as i32),
+                min: 1,
+                max: self.switch_type(type_name).items.len() as i32,
             },
+        };
+        let description = match v.kind {
+            Kind::Switch { type_name, .. } => format!(
+                "{} ({})",
+                v.description,
+                self.switch_type(type_name).listing()
+            ),
+            _ => v.description.to_string(),
         };
         ScalarVariable {
             name: v.name,
             value_reference: v.value_reference,
-            description: v.description,
+            description,
             causality: causality(v.causality),
             variability: variability(v.variability),
             kind,
         }
+    }
+
+    fn switch_type(&self, name: &str) -> &EnumType {
+        self.enum_types
+            .iter()
+            .find(|e| e.name == name)
+            .expect("every switch names a type of its table (interface tests)")
     }
 
     fn uses_unit(&self, name: &str) -> bool {
@@ -127,7 +145,7 @@ impl<'a> Interface<'a> {
     fn uses_type(&self, name: &str) -> bool {
         self.variables
             .iter()
-            .any(|v| matches!(v.kind, Kind::Enumeration { type_name, .. } if type_name == name))
+            .any(|v| matches!(v.kind, Kind::Switch { type_name, .. } if type_name == name))
     }
 
     fn model_structure(&self) -> ModelStructure {
@@ -222,17 +240,10 @@ impl<'a> Interface<'a> {
                     .filter(|e| self.uses_type(e.name))
                     .map(|e| SimpleType {
                         name: e.name,
-                        enumeration: EnumerationType {
-                            items: e
-                                .items
-                                .iter()
-                                .enumerate()
-                                .map(|(i, (name, description))| Item {
-                                    name,
-                                    value: i as i32 + 1,
-                                    description,
-                                })
-                                .collect(),
+                        description: e.listing(),
+                        integer: IntegerType {
+                            min: 1,
+                            max: e.items.len() as i32,
                         },
                     })
                     .collect(),

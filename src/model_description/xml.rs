@@ -112,28 +112,25 @@ impl TypeDefinitions<'_> {
     }
 }
 
+/// A switch's type: an Integer range whose description numbers the items ("1 split, 2 total").
+/// Switches are Integers, not Enumerations, because co-simulation engines (libcosim, ecos)
+/// ignore FMI 2.0 Enumeration variables.
 #[derive(Serialize)]
 pub struct SimpleType<'a> {
     #[serde(rename = "@name")]
     pub name: &'a str,
-    #[serde(rename = "Enumeration")]
-    pub enumeration: EnumerationType<'a>,
-}
-
-#[derive(Serialize)]
-pub struct EnumerationType<'a> {
-    #[serde(rename = "Item")]
-    pub items: Vec<Item<'a>>,
-}
-
-#[derive(Serialize)]
-pub struct Item<'a> {
-    #[serde(rename = "@name")]
-    pub name: &'a str,
-    #[serde(rename = "@value")]
-    pub value: i32,
     #[serde(rename = "@description")]
-    pub description: &'a str,
+    pub description: String,
+    #[serde(rename = "Integer")]
+    pub integer: IntegerType,
+}
+
+#[derive(Serialize)]
+pub struct IntegerType {
+    #[serde(rename = "@min")]
+    pub min: i32,
+    #[serde(rename = "@max")]
+    pub max: i32,
 }
 
 #[derive(Serialize)]
@@ -175,7 +172,7 @@ pub struct ScalarVariable<'a> {
     #[serde(rename = "@valueReference")]
     pub value_reference: u32,
     #[serde(rename = "@description")]
-    pub description: &'a str,
+    pub description: String,
     #[serde(rename = "@causality")]
     pub causality: &'a str,
     #[serde(rename = "@variability")]
@@ -197,18 +194,14 @@ pub enum KindXml<'a> {
         max: Option<String>,
     },
     Integer {
+        #[serde(rename = "@declaredType", skip_serializing_if = "Option::is_none")]
+        declared_type: Option<&'a str>,
         #[serde(rename = "@start")]
         start: i32,
         #[serde(rename = "@min")]
         min: i32,
         #[serde(rename = "@max")]
         max: i32,
-    },
-    Enumeration {
-        #[serde(rename = "@declaredType")]
-        declared_type: &'a str,
-        #[serde(rename = "@start")]
-        start: i32,
     },
 }
 

@@ -21,18 +21,17 @@ fn escape(text: &str) -> String {
         .replace('>', "&gt;")
 }
 
-/// A value as the page shows it; an enumeration's item with the items it could have been.
+/// A value as the page shows it; a switch's number and item with the items it could have been
+/// (switches are set with fmi2SetInteger, by number).
 fn value_text(table: &ModelTable, var: &Variable, value: f64) -> String {
     match var.kind {
         Kind::Real { .. } => crate::interface::values::number(value),
         Kind::Integer { .. } => (value as i64).to_string(),
-        Kind::Enumeration { type_name, .. } => {
+        Kind::Switch { type_name, .. } => {
             let enum_type = table.enum_type(type_name);
-            let all: Vec<&str> = enum_type
-                .map(|e| e.items.iter().map(|(n, _)| *n).collect())
-                .unwrap_or_default();
+            let all = enum_type.map(|e| e.listing()).unwrap_or_default();
             let item = enum_type.and_then(|e| e.item(value as i32)).unwrap_or("");
-            format!("{item} (of {})", all.join(", "))
+            format!("{} {item} (of {all})", value as i32)
         }
     }
 }
@@ -40,7 +39,7 @@ fn value_text(table: &ModelTable, var: &Variable, value: f64) -> String {
 fn table_start(var: &Variable) -> f64 {
     match var.kind {
         Kind::Real { start, .. } => start,
-        Kind::Integer { start, .. } | Kind::Enumeration { start, .. } => f64::from(start),
+        Kind::Integer { start, .. } | Kind::Switch { start, .. } => f64::from(start),
     }
 }
 
@@ -172,8 +171,9 @@ mod tests {
         let html = scene_page(&scene);
         assert!(html.contains("<tr><td><code>vc</code></td><td>0.146</td>"));
         assert!(html.contains("<tr><td><code>kt</code></td><td>30000</td>"));
-        assert!(html
-            .contains("<tr><td><code>law</code></td><td>coulomb (of coulomb, dahl, lugre)</td>"));
+        assert!(html.contains(
+            "<tr><td><code>law</code></td><td>1 coulomb (of 1 coulomb, 2 dahl, 3 lugre)</td>"
+        ));
         assert!(html.contains("<h2>Fixed values</h2>") && html.contains("<code>FT_mean</code>"));
         assert!(!html.contains("<code>FT</code>"));
     }

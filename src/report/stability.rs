@@ -165,7 +165,7 @@ pub fn solvers(model: &str) -> Vec<&'static str> {
     crate::scenes::model(model)
         .and_then(|m| {
             let var = m.table.by_name("solver")?;
-            let crate::interface::variable::Kind::Enumeration { type_name, .. } = var.kind else {
+            let crate::interface::variable::Kind::Switch { type_name, .. } = var.kind else {
                 return None;
             };
             m.table.enum_type(type_name)

@@ -4,7 +4,9 @@
 use super::raw::{Raw, RawExperiment};
 use super::SceneFile;
 use crate::interface::values::{check_value, ValueSet};
-use crate::interface::variable::{Causality, Kind, ModelTable, Variable};
+use crate::interface::variable::{
+    communication_grid, Causality, InputSwitch, Kind, ModelTable, Variable,
+};
 use crate::model_description::Experiment;
 use crate::scenes;
 
@@ -13,13 +15,6 @@ const LAW_PARAMETER: &[(&str, &str)] = &[
     ("LongitudinalFriction", "law"),
     ("TransverseFriction", "slip_law"),
     ("DryFrictionOscillator", "law"),
-];
-
-/// (model, switch parameter, item, input): the input is read when the switch has that item.
-const INPUT_SWITCHES: &[(&str, &str, &str, &str)] = &[
-    ("LongitudinalFriction", "velocity_source", "input", "vr_in"),
-    ("TransverseFriction", "drive_source", "input", "vd_in"),
-    ("DryFrictionOscillator", "force_source", "input", "P_in"),
 ];
 
 const SOLVER_PARAMETER: &str = "solver";
@@ -152,10 +147,12 @@ pub fn scene(file: &str, raw: Raw, text: &str) -> Result<SceneFile, String> {
         ));
     }
 
-    let switches = INPUT_SWITCHES
-        .iter()
-        .filter(|(id, ..)| *id == table.model_identifier);
-    for &(_, switch, item, input) in switches {
+    for &InputSwitch {
+        switch,
+        item,
+        input,
+    } in table.input_switches
+    {
         let (Some(switch_var), Some(input_var)) = (table.by_name(switch), table.by_name(input))
         else {
             continue;
@@ -245,7 +242,7 @@ fn names(table: &ModelTable, filter: impl Fn(&Variable) -> bool) -> String {
 
 /// An enumeration's item by name, through the model's EnumType.
 fn enum_value(table: &ModelTable, var: &Variable, item: &str) -> Result<f64, String> {
-    let Kind::Enumeration { type_name, .. } = var.kind else {
+    let Kind::Switch { type_name, .. } = var.kind else {
         return Err(format!("{} is not an enumeration", var.name));
     };
     let enum_type = table
@@ -281,8 +278,8 @@ fn toml_value(table: &ModelTable, var: &Variable, value: &toml::Value) -> Result
                 shown(value)
             ))
         }
-        (Kind::Enumeration { .. }, toml::Value::String(item)) => enum_value(table, var, item)?,
-        (Kind::Enumeration { .. }, _) => {
+        (Kind::Switch { .. }, toml::Value::String(item)) => enum_value(table, var, item)?,
+        (Kind::Switch { .. }, _) => {
             return Err(format!(
                 "{} = {}: expected an item name in quotes",
                 var.name,
@@ -322,6 +319,7 @@ fn experiment(raw: &RawExperiment) -> Result<Experiment, (&'static str, String)>
             ),
         ));
     }
+    communication_grid(start, stop, step).map_err(|message| ("experiment.step", message))?;
     if let Some(tolerance) = tolerance {
         if !(tolerance.is_finite() && tolerance > 0.0) {
             return Err((

@@ -32,7 +32,7 @@ impl SceneFile {
     /// A value as a person reads it: enumerations by item name.
     pub fn value_text(&self, var: &Variable) -> String {
         match var.kind {
-            Kind::Enumeration { .. } => self.values.item(var.value_reference).to_string(),
+            Kind::Switch { .. } => self.values.item(var.value_reference).to_string(),
             _ => crate::interface::values::number(self.values.real(var.value_reference)),
         }
     }

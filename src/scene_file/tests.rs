@@ -21,7 +21,7 @@ steps_per_period = 400
 body = "free"
 [experiment]
 start = 0.0
-stop = 0.015
+stop = 0.016
 step = 1e-5
 "#;
 
@@ -58,7 +58,7 @@ fn a_valid_file_gives_its_values_and_keeps_what_it_lists() {
     assert_eq!(scene.values.item(vr::SLIP_LAW), "split");
     assert_eq!(scene.values.real(vr::KT), 6.286e7);
     assert_eq!(scene.kept, vec![vr::KT, vr::VD, vr::FFX, vr::FD]);
-    assert_eq!(scene.experiment.stop, 0.015);
+    assert_eq!(scene.experiment.stop, 0.016);
     // Not given: it states the tolerance the solver integrates to (the model's default).
     assert_eq!(scene.experiment.tolerance, Some(1e-10));
     let scope = scene.scope();
@@ -89,7 +89,7 @@ fn the_trimmed_xml_lists_the_kept_variables_and_hashes_to_its_guid() {
     }
     assert!(xml.contains("start=\"5e-4\""));
     assert!(!xml.contains("name=\"va\"") && !xml.contains("SlipLaw"));
-    assert!(xml.contains("stopTime=\"0.015\"") && xml.contains("tolerance=\"0.0000000001\""));
+    assert!(xml.contains("stopTime=\"0.016\"") && xml.contains("tolerance=\"0.0000000001\""));
     assert!(xml.contains("modelIdentifier=\"Fig4a\""));
     // Fd depends on vd_in in the full model; hidden, it is no dependency here.
     assert!(xml.contains("<Unknown index=\"4\" dependencies=\"\"/>"));
@@ -266,8 +266,18 @@ fn a_bad_experiment_is_refused() {
         &["key `experiment.step`", "expected 0 < step"],
     );
     refused(
-        &variant("stop = 0.015", "stop = 0.0"),
+        &variant("stop = 0.016", "stop = 0.0"),
         &["key `experiment.stop`", "expected a finite time > start"],
+    );
+    // libcosim's clock counts nanoseconds; 1/60 kHz is no whole number of them.
+    refused(
+        &variant("step = 1e-5", "step = 1.6666666666666667e-05"),
+        &["key `experiment.step`", "whole number of nanoseconds"],
+    );
+    // 1500 steps of 1e-5 end at 0.015000000000000001, not at 0.015.
+    refused(
+        &variant("stop = 0.016", "stop = 0.015"),
+        &["key `experiment.step`", "whole number of steps"],
     );
     refused(
         &variant("step = 1e-5", "step = 1e-5\ntolerance = -1"),

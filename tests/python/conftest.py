@@ -5,12 +5,15 @@ both); a missing FMU is an error, never a skip.
 """
 import os
 import pathlib
+import sys
 import tempfile
 
 import fmpy
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "python"))
+from friction_fmu import switches  # noqa: E402
 FMU_DIR = ROOT / "fmu-out"
 
 
@@ -21,11 +24,8 @@ def fmu_path(model_identifier):
 
 
 def enum_value(model_identifier, variable, item):
-    """The integer of an enumeration item, read from the FMU's own modelDescription."""
-    md = fmpy.read_model_description(fmu_path(model_identifier))
-    var = next(v for v in md.modelVariables if v.name == variable)
-    items = var.declaredType.items
-    return next(int(i.value) for i in items if i.name == item)
+    """The integer of a switch's item, read from the FMU's own modelDescription."""
+    return switches.value(fmpy.read_model_description(fmu_path(model_identifier)), variable, item)
 
 
 def simulate(model_identifier, start_values=None, stop_time=None, step=None, outputs=None, **kw):

@@ -163,7 +163,7 @@ def calls(slave, model):
     fmu = slave.fmu
     real_parameter = variables(model, "parameter", "Real")[0].valueReference
     integer_parameter = next(
-        v.valueReference for v in variables(model, "parameter") if v.type in ("Integer", "Enumeration")
+        v.valueReference for v in variables(model, "parameter") if v.type == "Integer"
     )
     output = variables(model, "output", "Real")[0].valueReference
     real_input = variables(model, "input", "Real")[0].valueReference
@@ -308,9 +308,7 @@ def test_bad_parameter_values_are_refused_with_name_and_expectation(model):
             for value in bad_values(variable):
                 refused(slave, lambda: slave.fmu.setReal([vr], [value]), "fmi2SetReal", variable.name, "expected")
         else:
-            items = len(variable.declaredType.items) if variable.type == "Enumeration" else None
-            low = 1 if items else int(variable.min)
-            high = items if items else int(variable.max)
+            low, high = int(variable.min), int(variable.max)
             outside = [v for v in {low - 1, high + 1, -(2**31), 2**31 - 1} if not low <= v <= high]
             for value in outside:
                 refused(slave, lambda: slave.fmu.setInteger([vr], [value]), "fmi2SetInteger", variable.name, "expected")
@@ -564,3 +562,52 @@ def test_free_instance_twice_or_on_null_is_harmless(model):
     keeper.initialize()
     keeper.fmu.doStep(0.0, default_step(model))
     keeper.free()
+
+
+GOVERNED_INPUTS = [  # (model, switch, input): the input is read only when the switch is `input`
+    ("LongitudinalFriction", "velocity_source", "vr_in"),
+    ("TransverseFriction", "drive_source", "vd_in"),
+    ("DryFrictionOscillator", "force_source", "P_in"),
+    ("DriveTrain", "voltage_source", "V_in"),
+]
+
+
+def set_real(slave, name, value):
+    """fmi2SetReal's status (fmpy's setReal drops it)."""
+    from fmpy.fmi2 import fmi2Real, fmi2ValueReference
+
+    return slave.fmu.fmi2SetReal(slave.fmu.component, (fmi2ValueReference * 1)(slave.vr[name]), 1,
+                                 (fmi2Real * 1)(value))
+
+
+@pytest.mark.parametrize("model, switch, input_name", GOVERNED_INPUTS)
+def test_an_input_the_configuration_does_not_read_is_never_set_silently(model, switch, input_name):
+    """Set during initialization: fmi2ExitInitializationMode warns, naming the switch; set
+    during the run: that fmi2SetReal warns, once per run. With the switch flipped: no warning."""
+    slave = Slave(model)
+    slave.fmu.setupExperiment(startTime=0.0)
+    slave.fmu.enterInitializationMode()
+    assert set_real(slave, input_name, 0.0) == 0
+    assert slave.fmu.exitInitializationMode() == 1  # fmi2Warning
+    assert f"{input_name} is set but not read" in slave.last_message()
+    assert f"expected {switch} = input" in slave.last_message()
+    slave.free()
+
+    slave = Slave(model)
+    slave.initialize()
+    count = len(slave.messages)
+    assert set_real(slave, input_name, 0.0) == 1
+    assert slave.last_message().startswith(f"fmi2SetReal: {input_name} is set but not read")
+    assert set_real(slave, input_name, 0.0) == 0
+    assert len(slave.messages) == count + 1
+    slave.free()
+
+    slave = Slave(model)
+    slave.fmu.setupExperiment(startTime=0.0)
+    slave.fmu.enterInitializationMode()
+    assert set_real(slave, input_name, 0.0) == 0
+    slave.set(**{switch: "input"})  # the switch may come after its input
+    assert slave.fmu.exitInitializationMode() == 0
+    assert set_real(slave, input_name, 0.0) == 0
+    assert slave.messages == []
+    slave.free()

@@ -18,6 +18,7 @@ from fmpy.validation import validate_fmu
 
 import conftest
 from conftest import ROOT, Slave, fmu_path
+from friction_fmu import switches
 
 BINARY = ROOT / "target" / "release" / "friction-fmu"
 SCENES = sorted((ROOT / "scenes").glob("*.toml"))
@@ -64,8 +65,7 @@ def start_of(scene, name):
 
 
 def item_value(md, name, item):
-    var = next(v for v in md.modelVariables if v.name == name)
-    return next(int(i.value) for i in var.declaredType.items if i.name == item)
+    return switches.value(md, name, item)
 
 
 def full_start_values(scene):
@@ -106,7 +106,7 @@ def test_model_description_keeps_exactly_what_the_file_lists(packed, stem):
             assert var.start is None
             continue
         expected = start_of(scene, var.name)
-        if var.type == "Enumeration":
+        if switches.items(var) is not None:
             assert var.start == str(item_value(md, var.name, expected)), var.name
         else:
             assert float(var.start) == float(expected), var.name

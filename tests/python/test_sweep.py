@@ -19,7 +19,7 @@ import pytest
 from conftest import ROOT, enum_value, fmu_path
 
 sys.path.insert(0, str(ROOT / "python"))
-from friction_fmu import heatmap  # noqa: E402
+from friction_fmu import heatmap, switches  # noqa: E402
 from friction_fmu.grid import Output, Plan, Span  # noqa: E402
 from friction_fmu.sweep import main, run_sweep, write_csv  # noqa: E402
 
@@ -204,8 +204,7 @@ def test_one_axis_sweep_draws_one_row(tmp_path):
 
 def _item_names(variable):
     md = fmpy.read_model_description(fmu_path(MODEL))
-    return [i.name for i in next(v for v in md.modelVariables
-                                  if v.name == variable).declaredType.items]
+    return list(switches.items(next(v for v in md.modelVariables if v.name == variable)))
 
 
 SMALL_PLAN = ["--grid", "vd=1e-4,2e-4", "--set", "f=3000", "--output", "FFx_mean",

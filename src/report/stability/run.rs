@@ -83,7 +83,7 @@ fn set(fmu: &mut Instance, table: &ModelTable, name: &str, value: Value) -> Resu
     let status = match (value, var.kind) {
         (Value::Real(x), _) => fmu.set_real(&vr, &[x]),
         (Value::Integer(n), _) => fmu.set_integer(&vr, &[n]),
-        (Value::Item(item), Kind::Enumeration { type_name, .. }) => {
+        (Value::Item(item), Kind::Switch { type_name, .. }) => {
             let code = table
                 .enum_type(type_name)
                 .and_then(|e| e.value_of(item))

@@ -1,0 +1,133 @@
+"""Every FMU (full and scene) through a plain C host (tests/host/fmu_host.c), as a tool vendor's
+importer would load it: built with gcc and run natively on binaries/linux64, built with
+x86_64-w64-mingw32-gcc and run under wine on binaries/win64. Against fmpy's run of the same
+DefaultExperiment: bit for bit natively (the same library and maths), within 1e-8 of each
+output's range under wine (Windows' maths library rounds some functions differently). Every
+status must be fmi2OK, and a wrong GUID is refused with a logged message on both platforms.
+
+Wine 8 lacks bcryptprimitives.dll, which Rust's standard library imports (ProcessPrng) and every
+Windows 10 and 11 has: the test builds a stand-in (tests/host/bcryptprimitives.c) next to the
+host program. An FMU never carries it.
+"""
+import os
+import pathlib
+import re
+import shutil
+import subprocess
+import zipfile
+
+import fmpy
+import numpy as np
+import pytest
+
+from conftest import FMU_DIR, ROOT
+
+HOST = ROOT / "tests" / "host"
+FMUS = sorted(FMU_DIR.glob("*.fmu")) + sorted((FMU_DIR / "scenes").glob("*.fmu"))
+WINE = shutil.which("wine")
+MINGW = shutil.which("x86_64-w64-mingw32-gcc")
+
+
+@pytest.fixture(scope="module")
+def hosts(tmp_path_factory):
+    """{platform: command prefix} of the host programs this machine can build and run."""
+    directory = tmp_path_factory.mktemp("host")
+    native = directory / "fmu_host"
+    subprocess.run(["gcc", "-O2", "-Wall", "-Werror", "-o", str(native), str(HOST / "fmu_host.c"), "-ldl"],
+                   check=True)
+    hosts = {"linux64": [str(native)]}
+    if os.environ.get("CI") and not (WINE and MINGW):
+        pytest.fail("CI runs the win64 checks: tests/run.sh installs wine and mingw-w64")
+    if WINE and MINGW:
+        exe = directory / "fmu_host.exe"
+        subprocess.run([MINGW, "-O2", "-Wall", "-Werror", "-o", str(exe), str(HOST / "fmu_host.c")], check=True)
+        subprocess.run([MINGW, "-O2", "-shared", "-o", str(directory / "bcryptprimitives.dll"),
+                        str(HOST / "bcryptprimitives.c"), "-ladvapi32"], check=True)
+        hosts["win64"] = [WINE, str(exe)]
+    return hosts
+
+
+def wine_environment():
+    return {**os.environ, "WINEDEBUG": "-all", "WINEDLLOVERRIDES": "mscoree,mshtml=", "DISPLAY": ""}
+
+
+def run_host(command, directory, *extra):
+    done = subprocess.run([*command, str(directory), *extra], capture_output=True, text=True, timeout=600,
+                          env=wine_environment())
+    return done.returncode, done.stdout, done.stderr
+
+
+def read_csv(text):
+    lines = text.strip().splitlines()
+    names = lines[0].split(",")
+    table = np.array([[float(x) for x in line.split(",")] for line in lines[1:]])
+    return {name: table[:, i] for i, name in enumerate(names)}
+
+
+@pytest.fixture(scope="module")
+def fmpy_runs():
+    runs = {}
+    for fmu in FMUS:
+        md = fmpy.read_model_description(str(fmu))
+        outputs = [v.name for v in md.modelVariables if v.causality == "output" and v.type == "Real"]
+        experiment = md.defaultExperiment
+        runs[fmu.stem] = fmpy.simulate_fmu(str(fmu), stop_time=float(experiment.stopTime),
+                                           output_interval=float(experiment.stepSize), output=outputs)
+    return runs
+
+
+@pytest.mark.parametrize("platform", ["linux64", "win64"])
+def test_every_fmu_carries_its_platforms_binary(platform):
+    if platform == "win64" and not MINGW:
+        pytest.skip("no mingw-w64 here: the FMUs carry linux64 only")
+    for fmu in FMUS:
+        with zipfile.ZipFile(fmu) as archive:
+            extension = "dll" if platform == "win64" else "so"
+            assert f"binaries/{platform}/{fmu.stem}.{extension}" in archive.namelist(), fmu.name
+
+
+@pytest.mark.parametrize("platform", ["linux64", "win64"])
+@pytest.mark.parametrize("fmu", FMUS, ids=[f.stem for f in FMUS])
+def test_the_c_host_runs_the_default_experiment_as_fmpy_does(platform, fmu, hosts, fmpy_runs, tmp_path):
+    if platform not in hosts:
+        pytest.skip("no wine and mingw-w64 here")
+    with zipfile.ZipFile(fmu) as archive:
+        archive.extractall(tmp_path)
+    status, out, err = run_host(hosts[platform], tmp_path)
+    assert status == 0, err[-3000:]
+    result, reference = read_csv(out), fmpy_runs[fmu.stem]
+    assert len(result["time"]) == len(reference)
+    for name in reference.dtype.names:
+        if platform == "linux64":
+            assert np.array_equal(result[name], reference[name]), name
+        else:
+            scale = np.ptp(reference[name]) or np.max(np.abs(reference[name])) or 1.0
+            error = np.max(np.abs(result[name] - reference[name])) / scale
+            assert error <= 1e-8, f"{name}: {error:.1e} of its range"
+
+
+@pytest.mark.parametrize("platform", ["linux64", "win64"])
+def test_a_wrong_guid_is_refused_with_a_logged_message(platform, hosts, tmp_path):
+    if platform not in hosts:
+        pytest.skip("no wine and mingw-w64 here")
+    with zipfile.ZipFile(FMU_DIR / "TransverseFriction.fmu") as archive:
+        archive.extractall(tmp_path)
+    status, _, err = run_host(hosts[platform], tmp_path, "--guid", "{00000000-0000-0000-0000-000000000000}")
+    assert status == 1 and "fmi2Instantiate: NULL" in err, err
+    assert 'log host status 3 [logStatusError]: fmi2Instantiate: fmuGUID "{00000000' in err, err
+
+
+def glibc_versions(library):
+    """The GLIBC_x.y symbol versions a library needs, as tuples."""
+    dynamic = subprocess.run(["objdump", "-T", str(library)], capture_output=True, text=True, check=True).stdout
+    return {tuple(int(n) for n in v.split(".")) for v in re.findall(r"GLIBC_([0-9.]+)\)?\s", dynamic)}
+
+
+@pytest.mark.parametrize("fmu", FMUS, ids=[f.stem for f in FMUS])
+def test_the_linux64_library_loads_on_glibc_2_17_and_is_stripped(fmu, tmp_path):
+    with zipfile.ZipFile(fmu) as archive:
+        library = pathlib.Path(archive.extract(f"binaries/linux64/{fmu.stem}.so", tmp_path))
+    versions = glibc_versions(library)
+    assert versions and max(versions) <= (2, 17), sorted(versions)[-3:]
+    symbols = subprocess.run(["objdump", "-t", str(library)], capture_output=True, text=True).stdout
+    assert "no symbols" in symbols, symbols[:500]
