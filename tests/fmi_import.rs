@@ -52,6 +52,8 @@ fn pack(tag: &str) -> (PathBuf, PathBuf) {
     std::fs::create_dir_all(&dir).expect("create temp dir");
     let library = friction_fmu::package::Library {
         platform: "linux64",
+        model: MODEL,
+        scene: false,
         path: cdylib(),
     };
     let fmu = friction_fmu::package::pack(MODEL, &[library], &dir).expect("pack the FMU");

@@ -220,7 +220,10 @@ fn every_scene_step_does_not_allocate() {
         let file = resources.join(scene_file::RESOURCE);
         std::fs::write(&file, &scene.text).unwrap();
         // The GUID fmi2Instantiate checks the file against, computed the way it does.
-        let guid = scene_file::registry::load(&file).unwrap().guid.clone();
+        let guid = scene_file::registry::load(&file, friction_fmu::scenes::MODELS)
+            .unwrap()
+            .guid
+            .clone();
         let mut arguments = Instantiation::new(scene.model.table.model_identifier, &scene.name)
             .expect("the scene's model is in this binary");
         arguments.guid = Some(guid);

@@ -19,24 +19,19 @@ use std::process::ExitCode;
 
 const USAGE: &str = "usage: friction-fmu [build [SCENE.toml...]|run|report] [--out DIR]\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out) and the drive-coupled system into DIR/DriveFriction.ssp\n          or, given scene files, each into DIR/<name>.fmu with only the variables it keeps\n  run     build, pack scenes/*.toml into DIR/scenes, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.svg (default DIR: report), trimmed against full scenes: DIR/trimmed.md";
 
-/// The FMU libraries of every platform whose toolchain is installed; this machine's is the one
-/// built beside this program.
+/// The FMU libraries of every model and platform whose toolchain is installed, built from the
+/// source tree this program was built from.
 fn libraries() -> Result<Vec<package::Library>, String> {
-    let exe = std::env::current_exe().map_err(|e| format!("cannot locate this program: {e}"))?;
-    let dir = exe.parent().ok_or("this program has no directory")?;
-    let library = package::library_beside(dir);
-    if !library.exists() {
-        return Err(format!(
-            "{} is missing: build the library first (cargo build --release)",
-            library.display()
-        ));
-    }
-    package::platforms::libraries(&library, Path::new(env!("CARGO_MANIFEST_DIR")))
+    package::platforms::libraries(Path::new(env!("CARGO_MANIFEST_DIR")), scene_file::trimmable)
 }
 
-/// Packs scene files; all are checked before any FMU is written.
-fn build_scenes(files: &[PathBuf], out: &Path) -> Result<(), String> {
-    let libraries = libraries()?;
+/// Packs scene files; all are checked before any library is built or FMU written. `libraries`:
+/// those already built, if any.
+fn build_scenes(
+    files: &[PathBuf],
+    out: &Path,
+    libraries: Option<&[package::Library]>,
+) -> Result<(), String> {
     let scenes = files
         .iter()
         .map(|file| scene_file::read(file))
@@ -51,18 +46,25 @@ fn build_scenes(files: &[PathBuf], out: &Path) -> Result<(), String> {
             ));
         }
     }
+    let built;
+    let libraries = match libraries {
+        Some(libraries) => libraries,
+        None => {
+            built = self::libraries()?;
+            &built
+        }
+    };
     for scene in &scenes {
-        let path = package::pack_scene(scene, &libraries, out)
+        let path = package::pack_scene(scene, libraries, out)
             .map_err(|e| format!("packing {}: {e}", scene.name))?;
         println!("wrote {}", path.display());
     }
     Ok(())
 }
 
-fn build(out: &Path) -> Result<(), String> {
-    let libraries = libraries()?;
+fn build(out: &Path, libraries: &[package::Library]) -> Result<(), String> {
     for model in scenes::MODELS {
-        let path = package::pack(model.table.model_identifier, &libraries, out)
+        let path = package::pack(model.table.model_identifier, libraries, out)
             .map_err(|e| format!("packing {}: {e}", model.table.model_identifier))?;
         println!("wrote {}", path.display());
     }
@@ -86,10 +88,11 @@ fn shipped_scene_files() -> Vec<PathBuf> {
 }
 
 fn run(out: &Path) -> Result<(), String> {
-    build(out)?;
+    let libraries = libraries()?;
+    build(out, &libraries)?;
     let files = shipped_scene_files();
     if !files.is_empty() {
-        build_scenes(&files, &out.join("scenes"))?;
+        build_scenes(&files, &out.join("scenes"), Some(&libraries))?;
     }
     let figures = out.join("figures");
     std::fs::create_dir_all(&figures).map_err(|e| format!("{}: {e}", figures.display()))?;
@@ -166,10 +169,14 @@ fn main() -> ExitCode {
         i += 1;
     }
     let result = match command {
-        "build" if !files.is_empty() => {
-            build_scenes(&files, &out.unwrap_or_else(|| PathBuf::from("fmu-out")))
-        }
-        "build" => build(&out.unwrap_or_else(|| PathBuf::from("fmu-out"))),
+        "build" if !files.is_empty() => build_scenes(
+            &files,
+            &out.unwrap_or_else(|| PathBuf::from("fmu-out")),
+            None,
+        ),
+        "build" => libraries().and_then(|libraries| {
+            build(&out.unwrap_or_else(|| PathBuf::from("fmu-out")), &libraries)
+        }),
         "report" => work_precision(&out.unwrap_or_else(|| PathBuf::from("report"))),
         _ => run(&out.unwrap_or_else(|| PathBuf::from("fmu-out"))),
     };

@@ -2,13 +2,16 @@
 //!
 //! Each one: find the instance (a pointer this library handed out and has not freed, else a
 //! refusal instead of a crash), turn pointers into slices, dispatch to [`Instance`], return.
+//! They carry their C names; [`super::binary`]'s macro exports them under those names.
+#![allow(non_snake_case)]
 
+use super::binary::Binary;
 use super::ffi::*;
 use super::instance::{Instance, Phase, READABLE, STATE_PHASES};
 use super::logger::Logger;
 use super::snapshot::{self, Snapshot};
 use crate::interface::variable::Kind;
-use crate::scene_file::registry::{self, Loaded};
+use crate::scene_file::registry::Loaded;
 use crate::scenes::Model;
 use std::ffi::{c_int, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -78,46 +81,88 @@ fn null_argument(instance: &Instance, function: &str, what: &str) -> Status {
     ))
 }
 
-#[no_mangle]
 pub extern "C" fn fmi2GetTypesPlatform() -> FmiString {
     c"default".as_ptr()
 }
 
-#[no_mangle]
 pub extern "C" fn fmi2GetVersion() -> FmiString {
     c"2.0".as_ptr()
 }
 
-/// The model and GUID an fmuGUID names: a full model's, or else a scene FMU's, whose
-/// resources/scene.toml must describe an interface with that GUID.
+/// The model and GUID an fmuGUID names among what `binary` carries: a full model's, or else a
+/// scene FMU's, whose resources/scene.toml must describe an interface with that GUID.
 fn interface_of(
+    binary: &Binary,
     guid: &str,
     resource_location: Option<&str>,
 ) -> Result<(&'static Model, &'static str, Option<&'static Loaded>), String> {
-    if let Some(&(model_identifier, guid)) = super::GUIDS.iter().find(|(_, g)| *g == guid) {
-        let model = crate::scenes::model(model_identifier)
-            .ok_or_else(|| format!("model {model_identifier} is not built into this binary"))?;
+    let full: Vec<(&'static Model, &'static str)> = if binary.full_models {
+        binary
+            .models
+            .iter()
+            .filter_map(|m| super::guid(m.table.model_identifier).map(|g| (m, g)))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    if let Some(&(model, guid)) = full.iter().find(|(_, g)| *g == guid) {
         return Ok((model, guid, None));
     }
-    match registry::for_guid(guid, resource_location) {
-        Ok(loaded) => Ok((loaded.scene.model, &loaded.guid, Some(loaded))),
-        Err(why) => {
-            let known: Vec<String> = super::GUIDS
-                .iter()
-                .map(|(id, g)| format!("{g} ({id})"))
-                .collect();
-            Err(format!(
-                "fmuGUID \"{guid}\" matches no model of this binary: expected {} (is the modelDescription.xml from another build?), or a scene FMU's; {why}",
-                known.join(" or ")
-            ))
-        }
-    }
+    let known: Vec<String> = full
+        .iter()
+        .map(|(m, g)| format!("{g} ({})", m.table.model_identifier))
+        .collect();
+    let this = if known.is_empty() {
+        "this binary is a scene FMU's: expected the GUID of the scene file in its resources"
+            .to_string()
+    } else {
+        format!(
+            "expected {} (is the modelDescription.xml from another build, or another FMU's?)",
+            known.join(" or ")
+        )
+    };
+    let Some(scene_files) = binary.scene_files else {
+        return Err(format!(
+            "fmuGUID \"{guid}\" matches no model of this binary: {this}"
+        ));
+    };
+    scene_files(guid, resource_location, binary.models)
+        .map(|loaded| (loaded.scene.model, loaded.guid.as_str(), Some(loaded)))
+        .map_err(|why| format!("fmuGUID \"{guid}\" matches no model of this binary: {this}; {why}"))
 }
 
+/// fmi2Instantiate of a library that carries every model and reads scene files.
+///
 /// # Safety
 /// Pointers as the FMI 2.0 standard defines them.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2Instantiate(
+    instance_name: FmiString,
+    fmu_type: c_int,
+    fmu_guid: FmiString,
+    fmu_resource_location: FmiString,
+    functions: *const CallbackFunctions,
+    visible: Boolean,
+    logging_on: Boolean,
+) -> Component {
+    instantiate(
+        &Binary::ALL,
+        instance_name,
+        fmu_type,
+        fmu_guid,
+        fmu_resource_location,
+        functions,
+        visible,
+        logging_on,
+    )
+}
+
+/// fmi2Instantiate of a library that carries what `binary` says.
+///
+/// # Safety
+/// Pointers as the FMI 2.0 standard defines them.
+#[allow(clippy::too_many_arguments)]
+pub unsafe fn instantiate(
+    binary: &Binary,
     instance_name: FmiString,
     fmu_type: c_int,
     fmu_guid: FmiString,
@@ -168,7 +213,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
                 ));
             }
         }
-        let (model, guid, scene) = match interface_of(guid, location) {
+        let (model, guid, scene) = match interface_of(binary, guid, location) {
             Ok(found) => found,
             Err(message) => return refuse(message),
         };
@@ -186,7 +231,6 @@ pub unsafe extern "C" fn fmi2Instantiate(
 
 /// # Safety
 /// `c` from fmi2Instantiate; NULL, foreign or already freed pointers are ignored.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2FreeInstance(c: Component) {
     let removed = {
         let mut live = live();
@@ -211,7 +255,6 @@ pub unsafe extern "C" fn fmi2FreeInstance(c: Component) {
 
 /// # Safety
 /// Pointers as the FMI 2.0 standard defines them.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2SetDebugLogging(
     c: Component,
     logging_on: Boolean,
@@ -235,7 +278,6 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
 
 /// # Safety
 /// `c` from fmi2Instantiate.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2SetupExperiment(
     c: Component,
     tolerance_defined: Boolean,
@@ -258,7 +300,6 @@ pub unsafe extern "C" fn fmi2SetupExperiment(
 
 /// # Safety
 /// `c` from fmi2Instantiate.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2EnterInitializationMode(c: Component) -> Status {
     with_instance(c, |instance| {
         instance.trace(|| "fmi2EnterInitializationMode()".into());
@@ -268,7 +309,6 @@ pub unsafe extern "C" fn fmi2EnterInitializationMode(c: Component) -> Status {
 
 /// # Safety
 /// `c` from fmi2Instantiate.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Component) -> Status {
     with_instance(c, |instance| {
         instance.trace(|| "fmi2ExitInitializationMode()".into());
@@ -278,7 +318,6 @@ pub unsafe extern "C" fn fmi2ExitInitializationMode(c: Component) -> Status {
 
 /// # Safety
 /// `c` from fmi2Instantiate.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2Terminate(c: Component) -> Status {
     with_instance(c, |instance| {
         instance.trace(|| "fmi2Terminate()".into());
@@ -288,7 +327,6 @@ pub unsafe extern "C" fn fmi2Terminate(c: Component) -> Status {
 
 /// # Safety
 /// `c` from fmi2Instantiate.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2Reset(c: Component) -> Status {
     with_instance(c, |instance| {
         instance.trace(|| "fmi2Reset()".into());
@@ -381,7 +419,6 @@ unsafe fn set_values<T: Copy>(
 
 /// # Safety
 /// Arrays of `nvr` elements, as the FMI 2.0 standard defines them.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2GetReal(
     c: Component,
     vr: *const ValueReference,
@@ -400,7 +437,6 @@ pub unsafe extern "C" fn fmi2GetReal(
 
 /// # Safety
 /// Arrays of `nvr` elements, as the FMI 2.0 standard defines them.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2GetInteger(
     c: Component,
     vr: *const ValueReference,
@@ -419,7 +455,6 @@ pub unsafe extern "C" fn fmi2GetInteger(
 
 /// # Safety
 /// Arrays of `nvr` elements; this FMU has no Boolean variables.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2GetBoolean(
     c: Component,
     vr: *const ValueReference,
@@ -438,7 +473,6 @@ pub unsafe extern "C" fn fmi2GetBoolean(
 
 /// # Safety
 /// Arrays of `nvr` elements; this FMU has no String variables.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2GetString(
     c: Component,
     vr: *const ValueReference,
@@ -457,7 +491,6 @@ pub unsafe extern "C" fn fmi2GetString(
 
 /// # Safety
 /// Arrays of `nvr` elements, as the FMI 2.0 standard defines them.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2SetReal(
     c: Component,
     vr: *const ValueReference,
@@ -476,7 +509,6 @@ pub unsafe extern "C" fn fmi2SetReal(
 
 /// # Safety
 /// Arrays of `nvr` elements, as the FMI 2.0 standard defines them.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2SetInteger(
     c: Component,
     vr: *const ValueReference,
@@ -495,7 +527,6 @@ pub unsafe extern "C" fn fmi2SetInteger(
 
 /// # Safety
 /// Arrays of `nvr` elements; this FMU has no Boolean variables.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2SetBoolean(
     c: Component,
     vr: *const ValueReference,
@@ -514,7 +545,6 @@ pub unsafe extern "C" fn fmi2SetBoolean(
 
 /// # Safety
 /// Arrays of `nvr` elements; this FMU has no String variables.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2SetString(
     c: Component,
     vr: *const ValueReference,
@@ -536,7 +566,6 @@ pub unsafe extern "C" fn fmi2SetString(
 ///
 /// # Safety
 /// `state` points to an fmi2FMUstate.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2GetFMUstate(c: Component, state: *mut FmuState) -> Status {
     with_instance(c, |instance| {
         instance.trace(|| "fmi2GetFMUstate()".into());
@@ -578,7 +607,6 @@ fn own_snapshot<'a>(
 
 /// # Safety
 /// `state` from fmi2GetFMUstate.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2SetFMUstate(c: Component, state: FmuState) -> Status {
     with_instance(c, |instance| {
         instance.trace(|| format!("fmi2SetFMUstate({state:?})"));
@@ -598,7 +626,6 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: Component, state: FmuState) -> Statu
 
 /// # Safety
 /// `state` points to an fmi2FMUstate from this instance.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: Component, state: *mut FmuState) -> Status {
     with_instance(c, |instance| {
         let Some(slot) = state.as_mut() else {
@@ -620,7 +647,6 @@ pub unsafe extern "C" fn fmi2FreeFMUstate(c: Component, state: *mut FmuState) ->
 
 /// # Safety
 /// `state` from fmi2GetFMUstate; `size` points to a size_t.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
     c: Component,
     state: FmuState,
@@ -642,7 +668,6 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
 
 /// # Safety
 /// `bytes` has room for `size` bytes.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2SerializeFMUstate(
     c: Component,
     state: FmuState,
@@ -671,7 +696,6 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
 
 /// # Safety
 /// `bytes` holds `size` bytes; `state` points to an fmi2FMUstate.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     c: Component,
     bytes: *const Byte,
@@ -715,7 +739,6 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
 
 /// # Safety
 /// `c` from fmi2Instantiate.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
     c: Component,
     _unknown: *const ValueReference,
@@ -738,7 +761,6 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
 
 /// # Safety
 /// Arrays of `nvr` elements, as the FMI 2.0 standard defines them.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     c: Component,
     vr: *const ValueReference,
@@ -760,7 +782,6 @@ pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
 
 /// # Safety
 /// Arrays of `nvr` elements, as the FMI 2.0 standard defines them.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
     c: Component,
     vr: *const ValueReference,
@@ -781,7 +802,6 @@ pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
 
 /// # Safety
 /// `c` from fmi2Instantiate.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2DoStep(
     c: Component,
     current_communication_point: Real,
@@ -798,7 +818,6 @@ pub unsafe extern "C" fn fmi2DoStep(
 
 /// # Safety
 /// `c` from fmi2Instantiate.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2CancelStep(c: Component) -> Status {
     with_instance(c, |instance| {
         instance.error(&format!("fmi2CancelStep is not allowed in state {}: expected StepPending, which never occurs here (fmi2DoStep never returns fmi2Pending)", instance.phase.name()))
@@ -809,7 +828,6 @@ const STATUS_PHASES: &[Phase] = &[Phase::StepComplete, Phase::StepFailed, Phase:
 
 /// # Safety
 /// `value` points to an fmi2Status.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2GetStatus(c: Component, kind: c_int, value: *mut Status) -> Status {
     with_instance(c, |instance| {
         if let Err(status) = instance.check_phase("fmi2GetStatus", STATUS_PHASES) {
@@ -833,7 +851,6 @@ pub unsafe extern "C" fn fmi2GetStatus(c: Component, kind: c_int, value: *mut St
 
 /// # Safety
 /// `value` points to an fmi2Real.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2GetRealStatus(c: Component, kind: c_int, value: *mut Real) -> Status {
     with_instance(c, |instance| {
         if let Err(status) = instance.check_phase("fmi2GetRealStatus", STATUS_PHASES) {
@@ -852,7 +869,6 @@ pub unsafe extern "C" fn fmi2GetRealStatus(c: Component, kind: c_int, value: *mu
 
 /// # Safety
 /// `c` from fmi2Instantiate.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2GetIntegerStatus(
     c: Component,
     kind: c_int,
@@ -870,7 +886,6 @@ pub unsafe extern "C" fn fmi2GetIntegerStatus(
 
 /// # Safety
 /// `value` points to an fmi2Boolean.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2GetBooleanStatus(
     c: Component,
     kind: c_int,
@@ -901,7 +916,6 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(
 
 /// # Safety
 /// `c` from fmi2Instantiate.
-#[no_mangle]
 pub unsafe extern "C" fn fmi2GetStringStatus(
     c: Component,
     kind: c_int,

@@ -4,6 +4,7 @@
 //! `instance`, one state machine shared by every model. No panic crosses the C boundary: every
 //! exported function runs its body under `catch_unwind`.
 
+pub mod binary;
 pub mod cpu_clock;
 pub mod driver;
 pub mod exports;

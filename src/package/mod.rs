@@ -17,7 +17,12 @@ include!(concat!(env!("OUT_DIR"), "/model_descriptions.rs"));
 /// The platform folder of binaries/ for the machine this library was built for; None where
 /// FMI 2.0 names none (an aarch64 or riscv build is no linux64 library).
 pub fn platform() -> Option<&'static str> {
-    match (std::env::consts::OS, std::env::consts::ARCH) {
+    platform_of(std::env::consts::OS, std::env::consts::ARCH)
+}
+
+/// The platform folder of binaries/ for an operating system and architecture as Rust names them.
+fn platform_of(os: &str, arch: &str) -> Option<&'static str> {
+    match (os, arch) {
         ("linux", "x86_64") => Some("linux64"),
         ("linux", "x86") => Some("linux32"),
         ("windows", "x86_64") => Some("win64"),
@@ -28,7 +33,7 @@ pub fn platform() -> Option<&'static str> {
 }
 
 /// The file extension of a platform's shared libraries.
-fn library_extension(platform: &str) -> &'static str {
+pub(crate) fn library_extension(platform: &str) -> &'static str {
     match platform {
         "win64" | "win32" => "dll",
         "darwin64" => "dylib",
@@ -36,20 +41,13 @@ fn library_extension(platform: &str) -> &'static str {
     }
 }
 
-/// A compiled library and the platform folder it goes to.
+/// A compiled library: the platform folder it goes to, and the FMUs it is for (a model's full
+/// FMU, or its scene FMUs).
 pub struct Library {
     pub platform: &'static str,
+    pub model: &'static str,
+    pub scene: bool,
     pub path: PathBuf,
-}
-
-/// The cdylib next to a binary of this crate (target/<profile>/libfriction_fmu.so).
-pub fn library_beside(dir: &Path) -> PathBuf {
-    let name = format!(
-        "{}friction_fmu{}",
-        std::env::consts::DLL_PREFIX,
-        std::env::consts::DLL_SUFFIX
-    );
-    dir.join(name)
 }
 
 pub fn model_description(model_identifier: &str) -> Option<&'static str> {
@@ -67,7 +65,23 @@ struct Contents<'a> {
     resources: &'a [(&'a str, &'a [u8])],
 }
 
-fn write_fmu(contents: &Contents, libraries: &[Library], out_dir: &Path) -> io::Result<PathBuf> {
+/// Writes the FMU with the libraries of `model` (its scene FMUs' when `scene`), one per platform.
+fn write_fmu(
+    contents: &Contents,
+    libraries: &[Library],
+    (model, scene): (&str, bool),
+    out_dir: &Path,
+) -> io::Result<PathBuf> {
+    let libraries: Vec<&Library> = libraries
+        .iter()
+        .filter(|l| l.model == model && l.scene == scene)
+        .collect();
+    if libraries.is_empty() {
+        return Err(io::Error::new(
+            io::ErrorKind::NotFound,
+            format!("no library was built for {model}"),
+        ));
+    }
     let binaries = libraries
         .iter()
         .map(|library| {
@@ -119,7 +133,7 @@ pub fn pack(model_identifier: &str, libraries: &[Library], out_dir: &Path) -> io
         documentation: &documentation::page(table),
         resources: &[],
     };
-    write_fmu(&contents, libraries, out_dir)
+    write_fmu(&contents, libraries, (model_identifier, false), out_dir)
 }
 
 /// Writes `<out_dir>/<name>.fmu` for a scene file: its trimmed modelDescription.xml, the same
@@ -133,5 +147,25 @@ pub fn pack_scene(scene: &SceneFile, libraries: &[Library], out_dir: &Path) -> i
         documentation: &documentation::scene_page(scene),
         resources: &[(scene_file::RESOURCE, scene.text.as_bytes())],
     };
-    write_fmu(&contents, libraries, out_dir)
+    let model = scene.model.table.model_identifier;
+    write_fmu(&contents, libraries, (model, true), out_dir)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::platform_of;
+
+    #[test]
+    fn only_the_platforms_fmi_names_have_a_binaries_folder() {
+        assert_eq!(platform_of("linux", "x86_64"), Some("linux64"));
+        assert_eq!(platform_of("windows", "x86_64"), Some("win64"));
+        assert_eq!(platform_of("macos", "aarch64"), Some("darwin64"));
+        for (os, arch) in [
+            ("linux", "aarch64"),
+            ("linux", "riscv64"),
+            ("freebsd", "x86_64"),
+        ] {
+            assert_eq!(platform_of(os, arch), None, "{os}/{arch}");
+        }
+    }
 }

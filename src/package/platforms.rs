@@ -1,11 +1,16 @@
-//! The libraries an FMU carries, one per platform: linux64 linked against glibc 2.17 (so it loads
-//! on RHEL 7 and later, Ubuntu 14.04 and later), win64 cross-built, each when its toolchain is
-//! installed; otherwise the library this machine built, and one line saying what is missing.
+//! The libraries the FMUs carry: one per model and kind (a full model's, or a scene FMU's that
+//! also reads its scene file), all built from `binary/` in one cargo run for every platform whose
+//! toolchain is installed, in the `fmu` profile (stripped):
 //!
 //! - linux64: `cargo-zigbuild` and `ziglang` from PyPI (in `.venv` or on PATH) link against
-//!   glibc 2.17's symbol versions;
+//!   glibc 2.17's symbol versions; without them, this machine's cargo and glibc, and one line
+//!   saying so;
 //! - win64: Debian's `rustc-web`, `cargo-web` and `rust-web-src` build the standard library for
-//!   `x86_64-pc-windows-gnu` (the rustup toolchain here has no Windows target), `mingw-w64` links.
+//!   `x86_64-pc-windows-gnu` (the rustup toolchain here has no Windows target), `mingw-w64`
+//!   links, with thin link-time optimisation; without them, one line saying the FMUs carry
+//!   linux64 only.
+//!
+//! On a machine that is not x86_64 Linux, this machine's platform alone, with its own cargo.
 
 use super::Library;
 use std::ffi::OsString;
@@ -15,16 +20,27 @@ use std::process::Command;
 const LINUX_TARGET: &str = "x86_64-unknown-linux-gnu";
 const WINDOWS_TARGET: &str = "x86_64-pc-windows-gnu";
 const MINGW_GCC: &str = "x86_64-w64-mingw32-gcc";
-const MINGW_STRIP: &str = "x86_64-w64-mingw32-strip";
 /// Debian's Rust toolchain (rustc-web, cargo-web) and the standard library's source.
 const DEBIAN_CARGO: &str = "/usr/bin/cargo";
 const DEBIAN_RUSTC: &str = "/usr/bin/rustc";
 const DEBIAN_STD_SOURCE: &str = "/usr/lib/rustlib/src/rust/library";
+const PACKAGE: &str = "friction-fmu-binary";
+const PROFILE: &str = "fmu";
 
-/// Builds what the installed toolchains can build and returns every platform's library, with
-/// `host` (this machine's build of the crate) for the platform it was built for when nothing
-/// better is installed. `root` is the source tree.
-pub fn libraries(host: &Path, root: &Path) -> Result<Vec<Library>, String> {
+/// How one platform's libraries are built.
+enum Toolchain {
+    /// This machine's cargo, for its own platform.
+    Host,
+    /// cargo-zigbuild at this path, for linux64 with glibc 2.17.
+    Zig(PathBuf),
+    /// Debian's cargo with -Zbuild-std, for win64.
+    DebianWindows,
+}
+
+/// Builds every model's libraries (full, and scene where `trimmable` says a scene file can trim
+/// the model) for every platform this machine can build, and returns them. `root` is the
+/// source tree.
+pub fn libraries(root: &Path, trimmable: impl Fn(&str) -> bool) -> Result<Vec<Library>, String> {
     let host_platform = super::platform().ok_or_else(|| {
         format!(
             "no FMI 2.0 platform for {}/{}: expected x86_64 or x86 Linux or Windows, or macOS",
@@ -32,39 +48,52 @@ pub fn libraries(host: &Path, root: &Path) -> Result<Vec<Library>, String> {
             std::env::consts::ARCH
         )
     })?;
-    let mut libraries = Vec::new();
+    let mut toolchains = Vec::new();
     if host_platform == "linux64" {
-        libraries.push(match find_zigbuild(root) {
-            Some(zigbuild) => Library {
-                platform: "linux64",
-                path: linux64_for_glibc_2_17(&zigbuild, root)?,
-            },
+        match find_zigbuild(root) {
+            Some(zigbuild) => toolchains.push(("linux64", Toolchain::Zig(zigbuild))),
             None => {
                 eprintln!(
                     "note: linux64 is linked against this machine's glibc; for glibc 2.17, install cargo-zigbuild and ziglang (pip install -r tests/python/requirements.txt into .venv)"
                 );
-                Library {
-                    platform: "linux64",
-                    path: host.to_path_buf(),
-                }
+                toolchains.push(("linux64", Toolchain::Host));
             }
-        });
+        }
     } else {
-        libraries.push(Library {
-            platform: host_platform,
-            path: host.to_path_buf(),
-        });
+        toolchains.push((host_platform, Toolchain::Host));
     }
     if host_platform != "win64" {
         if windows_toolchain() {
-            libraries.push(Library {
-                platform: "win64",
-                path: win64(root)?,
-            });
+            toolchains.push(("win64", Toolchain::DebianWindows));
         } else {
             eprintln!(
                 "note: packing {host_platform} only; for win64 too: apt-get install rustc-web cargo-web rust-web-src mingw-w64"
             );
+        }
+    }
+    let mut libraries = Vec::new();
+    for (platform, toolchain) in &toolchains {
+        let built = build(toolchain, root).map_err(|e| format!("{platform} libraries: {e}"))?;
+        for model in crate::scenes::MODELS {
+            let model = model.table.model_identifier;
+            for scene in [false, true] {
+                if scene && !trimmable(model) {
+                    continue;
+                }
+                let name = if scene {
+                    format!("{model}_scene")
+                } else {
+                    model.to_string()
+                };
+                let prefix = if *platform == "win64" { "" } else { "lib" };
+                let extension = super::library_extension(platform);
+                libraries.push(Library {
+                    platform,
+                    model,
+                    scene,
+                    path: built.join(format!("{prefix}{name}.{extension}")),
+                });
+            }
         }
     }
     Ok(libraries)
@@ -98,62 +127,70 @@ fn path_with(first: &Path) -> OsString {
         .unwrap_or(rest)
 }
 
-fn run(command: &mut Command, what: &str) -> Result<(), String> {
+/// Builds every library of `binary/`; returns the directory cargo wrote them to.
+fn build(toolchain: &Toolchain, root: &Path) -> Result<PathBuf, String> {
+    let args = [
+        "--quiet",
+        "--examples",
+        "--package",
+        PACKAGE,
+        "--profile",
+        PROFILE,
+    ];
+    let (mut command, built) = match toolchain {
+        Toolchain::Host => {
+            let mut command = Command::new(std::env::var_os("CARGO").unwrap_or("cargo".into()));
+            command.arg("build").args(args);
+            (command, root.join("target").join(PROFILE).join("examples"))
+        }
+        Toolchain::Zig(zigbuild) => {
+            let mut command = Command::new(zigbuild);
+            command
+                .arg("zigbuild")
+                .args(args)
+                .arg("--target")
+                .arg(format!("{LINUX_TARGET}.2.17"));
+            // cargo-zigbuild runs zig as `python3 -m ziglang`: the python beside it has it.
+            if let Some(bin) = zigbuild.parent() {
+                command.env("PATH", path_with(bin));
+            }
+            (
+                command,
+                root.join(format!("target/{LINUX_TARGET}/{PROFILE}/examples")),
+            )
+        }
+        Toolchain::DebianWindows => {
+            let target_dir = root.join("target/win64");
+            let mut command = Command::new(DEBIAN_CARGO);
+            command
+                .arg("build")
+                .args(args)
+                .args(["-Zbuild-std=std", "--target", WINDOWS_TARGET])
+                .env("PATH", path_with(Path::new("/usr/bin")))
+                .env("RUSTC", DEBIAN_RUSTC)
+                // -Zbuild-std is unstable: Debian's stable compiler allows it so.
+                .env("RUSTC_BOOTSTRAP", "1")
+                .env("CARGO_TARGET_DIR", &target_dir)
+                .env("CARGO_TARGET_X86_64_PC_WINDOWS_GNU_LINKER", MINGW_GCC)
+                // mingw-w64's linker keeps unreferenced code in a DLL (every model's); thin
+                // link-time optimisation leaves out what the one model does not reach.
+                .env("CARGO_PROFILE_FMU_LTO", "thin")
+                .env_remove("RUSTUP_TOOLCHAIN")
+                .env_remove("RUSTC_WRAPPER")
+                .env_remove("CARGO");
+            let built = target_dir.join(format!("{WINDOWS_TARGET}/{PROFILE}/examples"));
+            (command, built)
+        }
+    };
+    command.current_dir(root);
     let output = command
         .output()
-        .map_err(|e| format!("{what}: cannot start: {e}"))?;
-    if output.status.success() {
-        return Ok(());
+        .map_err(|e| format!("cannot start cargo: {e}"))?;
+    if !output.status.success() {
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        let lines: Vec<&str> = stderr.lines().collect();
+        let tail = lines[lines.len().saturating_sub(20)..].join("\n");
+        return Err(format!("the build failed ({}):\n{tail}", output.status));
     }
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    let tail: Vec<&str> = stderr.lines().rev().take(20).collect();
-    let tail: Vec<&str> = tail.into_iter().rev().collect();
-    Err(format!(
-        "{what} failed ({}):\n{}",
-        output.status,
-        tail.join("\n")
-    ))
-}
-
-fn linux64_for_glibc_2_17(zigbuild: &Path, root: &Path) -> Result<PathBuf, String> {
-    let mut command = Command::new(zigbuild);
-    command
-        .args(["zigbuild", "--release", "--lib", "--quiet", "--target"])
-        .arg(format!("{LINUX_TARGET}.2.17"))
-        .current_dir(root);
-    // cargo-zigbuild runs zig as `python3 -m ziglang`: the python next to it has the package.
-    if let Some(bin) = zigbuild.parent() {
-        command.env("PATH", path_with(bin));
-    }
-    run(&mut command, "cargo zigbuild (linux64, glibc 2.17)")?;
-    Ok(root.join(format!("target/{LINUX_TARGET}/release/libfriction_fmu.so")))
-}
-
-fn win64(root: &Path) -> Result<PathBuf, String> {
-    let target_dir = root.join("target/win64");
-    let mut command = Command::new(DEBIAN_CARGO);
-    command
-        .args(["build", "--release", "--lib", "--quiet", "-Zbuild-std=std"])
-        .args(["--target", WINDOWS_TARGET])
-        .current_dir(root)
-        .env("PATH", path_with(Path::new("/usr/bin")))
-        .env("RUSTC", DEBIAN_RUSTC)
-        // -Zbuild-std is unstable: Debian's stable compiler allows it so.
-        .env("RUSTC_BOOTSTRAP", "1")
-        .env("CARGO_TARGET_DIR", &target_dir)
-        .env("CARGO_TARGET_X86_64_PC_WINDOWS_GNU_LINKER", MINGW_GCC)
-        .env_remove("RUSTUP_TOOLCHAIN")
-        .env_remove("RUSTC_WRAPPER")
-        .env_remove("CARGO");
-    run(&mut command, "cargo build (win64)")?;
-    let built = target_dir.join(format!("{WINDOWS_TARGET}/release/friction_fmu.dll"));
-    let stripped = target_dir.join("friction_fmu.dll");
-    run(
-        Command::new(MINGW_STRIP)
-            .arg("-o")
-            .arg(&stripped)
-            .arg(&built),
-        "strip (win64)",
-    )?;
-    Ok(stripped)
+    Ok(built)
 }

@@ -8,10 +8,10 @@ use crate::interface::variable::{
     communication_grid, Causality, InputSwitch, Kind, ModelTable, Variable,
 };
 use crate::model_description::Experiment;
-use crate::scenes;
+use crate::scenes::Model;
 
 /// What the top-level `law` key sets in each model.
-const LAW_PARAMETER: &[(&str, &str)] = &[
+pub(super) const LAW_PARAMETER: &[(&str, &str)] = &[
     ("LongitudinalFriction", "law"),
     ("TransverseFriction", "slip_law"),
     ("DryFrictionOscillator", "law"),
@@ -26,11 +26,20 @@ const TOLERANCE_PARAMETER: &[(&str, &str)] = &[
     ("DryFrictionOscillator", "rtol"),
 ];
 
-pub fn scene(file: &str, raw: Raw, text: &str) -> Result<SceneFile, String> {
+/// Checks a scene file of one of `models`.
+pub fn scene(
+    file: &str,
+    raw: Raw,
+    text: &str,
+    models: &'static [Model],
+) -> Result<SceneFile, String> {
     let error = |key: &str, message: String| format!("{file}: key `{key}`: {message}");
-    check_name(&raw.name).map_err(|m| error("name", m))?;
+    check_name(&raw.name, models).map_err(|m| error("name", m))?;
     // The models with a friction law; DriveTrain has nothing to trim.
-    let model = scenes::model(&raw.model).filter(|m| {
+    let model = models
+        .iter()
+        .find(|m| m.table.model_identifier == raw.model);
+    let model = model.filter(|m| {
         LAW_PARAMETER
             .iter()
             .any(|(id, _)| *id == m.table.model_identifier)
@@ -211,7 +220,7 @@ pub fn scene(file: &str, raw: Raw, text: &str) -> Result<SceneFile, String> {
 }
 
 /// A modelIdentifier names files and C symbols' library: a C identifier, and no full model's.
-fn check_name(name: &str) -> Result<(), String> {
+fn check_name(name: &str, models: &[Model]) -> Result<(), String> {
     let mut chars = name.chars();
     let valid = chars
         .next()
@@ -222,7 +231,7 @@ fn check_name(name: &str) -> Result<(), String> {
             "\"{name}\" is not a valid modelIdentifier: expected a letter or _ followed by letters, digits or _"
         ));
     }
-    if scenes::model(name).is_some() {
+    if models.iter().any(|m| m.table.model_identifier == name) {
         return Err(format!(
             "\"{name}\" is the name of a full model: expected another name"
         ));

@@ -58,8 +58,21 @@ pub struct SceneFile {
 
 /// Parses and checks a scene file's text; `file` names it in the messages.
 pub fn parse(file: &str, text: &str) -> Result<SceneFile, String> {
+    parse_for(file, text, crate::scenes::MODELS)
+}
+
+/// Whether a scene file can trim the model: those with a friction law (DriveTrain has nothing to
+/// trim).
+pub fn trimmable(model_identifier: &str) -> bool {
+    check::LAW_PARAMETER
+        .iter()
+        .any(|(id, _)| *id == model_identifier)
+}
+
+/// Parses and checks a scene file of one of `models` (an FMU's library knows only its own).
+pub fn parse_for(file: &str, text: &str, models: &'static [Model]) -> Result<SceneFile, String> {
     let raw = raw::parse(file, text)?;
-    check::scene(file, raw, text)
+    check::scene(file, raw, text, models)
 }
 
 /// Reads, parses and checks a scene file.

@@ -3,7 +3,7 @@
 //! master that instantiates thousands of times does not parse or leak thousands of times.
 
 use super::SceneFile;
-use crate::scenes::Scope;
+use crate::scenes::{Model, Scope};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
@@ -23,7 +23,7 @@ struct Entry {
 static LOADED: Mutex<Vec<Entry>> = Mutex::new(Vec::new());
 
 /// The scene file at `path`, parsed on first sight of this (path, content).
-pub fn load(path: &Path) -> Result<&'static Loaded, String> {
+pub fn load(path: &Path, models: &'static [Model]) -> Result<&'static Loaded, String> {
     let file = path.display().to_string();
     let text =
         std::fs::read_to_string(path).map_err(|e| format!("{file}: cannot read the file: {e}"))?;
@@ -35,7 +35,7 @@ pub fn load(path: &Path) -> Result<&'static Loaded, String> {
     {
         return Ok(entry.loaded);
     }
-    let scene = super::parse(&file, &text)?;
+    let scene = super::parse_for(&file, &text, models)?;
     let (guid, _) = scene.model_description();
     let scope = scene.scope();
     let entry: &'static Loaded = Box::leak(Box::new(Loaded { scene, guid, scope }));
@@ -49,7 +49,11 @@ pub fn load(path: &Path) -> Result<&'static Loaded, String> {
 /// The scene file behind a GUID that is no full model's: `resources/scene.toml` under the
 /// fmuResourceLocation, accepted only if the interface it describes hashes to `guid`. The error
 /// says what is missing or does not match, for fmi2Instantiate's log.
-pub fn for_guid(guid: &str, resource_location: Option<&str>) -> Result<&'static Loaded, String> {
+pub fn for_guid(
+    guid: &str,
+    resource_location: Option<&str>,
+    models: &'static [Model],
+) -> Result<&'static Loaded, String> {
     let location = resource_location.filter(|l| !l.is_empty()).ok_or_else(|| {
         "fmuResourceLocation is NULL or empty, so no resources/scene.toml of a scene FMU can confirm it".to_string()
     })?;
@@ -62,7 +66,7 @@ pub fn for_guid(guid: &str, resource_location: Option<&str>) -> Result<&'static 
             path.display()
         ));
     }
-    let loaded = load(&path)?;
+    let loaded = load(&path, models)?;
     if loaded.guid != guid {
         return Err(format!(
             "{} describes an interface with GUID {}, not this one: expected the scene file the FMU was packed with (was it edited after packing?)",
@@ -76,6 +80,7 @@ pub fn for_guid(guid: &str, resource_location: Option<&str>) -> Result<&'static 
 #[cfg(test)]
 mod tests {
     use super::for_guid;
+    use crate::scenes::MODELS;
 
     const SCENE: &str = "name = \"Cached\"\nmodel = \"DryFrictionOscillator\"\nlaw = \"exact\"\nsolver = \"rk4\"\noutputs = [\"u\"]\n[experiment]\nstart = 0\nstop = 1\nstep = 0.1\n";
 
@@ -92,26 +97,26 @@ mod tests {
             .model_description()
             .0;
         let uri = format!("file://{}", dir.display()).replace(' ', "%20");
-        let first = for_guid(&guid, Some(&uri)).unwrap();
-        let second = for_guid(&guid, Some(&format!("{uri}/"))).unwrap();
+        let first = for_guid(&guid, Some(&uri), MODELS).unwrap();
+        let second = for_guid(&guid, Some(&format!("{uri}/")), MODELS).unwrap();
         assert!(std::ptr::eq(first, second));
         assert_eq!(first.scene.name, "Cached");
         assert!(first.scope.fixes(crate::interface::oscillator::vr::P));
 
-        let wrong = for_guid("{0}", Some(&uri)).err().unwrap();
+        let wrong = for_guid("{0}", Some(&uri), MODELS).err().unwrap();
         assert!(
             wrong.contains(&format!("describes an interface with GUID {guid}")),
             "{wrong}"
         );
         std::fs::write(&file, SCENE.replace("stop = 1", "stop = 2")).unwrap();
-        let edited = for_guid(&guid, Some(&uri)).err().unwrap();
+        let edited = for_guid(&guid, Some(&uri), MODELS).err().unwrap();
         assert!(edited.contains("was it edited after packing?"), "{edited}");
-        assert!(for_guid(&guid, None)
+        assert!(for_guid(&guid, None, MODELS)
             .err()
             .unwrap()
             .contains("NULL or empty"));
         std::fs::remove_file(&file).unwrap();
-        assert!(for_guid(&guid, Some(&uri))
+        assert!(for_guid(&guid, Some(&uri), MODELS)
             .err()
             .unwrap()
             .contains("there is no scene file"));

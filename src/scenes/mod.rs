@@ -89,24 +89,25 @@ pub struct Model {
     pub build: Builder,
 }
 
-pub const MODELS: &[Model] = &[
-    Model {
-        table: &crate::interface::longitudinal::TABLE,
-        build: longitudinal::build,
-    },
-    Model {
-        table: &crate::interface::transverse::TABLE,
-        build: transverse::build,
-    },
-    Model {
-        table: &crate::interface::oscillator::TABLE,
-        build: oscillator::build,
-    },
-    Model {
-        table: &crate::interface::drive::TABLE,
-        build: drive::build,
-    },
-];
+// One constant per model, so that an FMU's library that names one links none of the others.
+pub const LONGITUDINAL: Model = Model {
+    table: &crate::interface::longitudinal::TABLE,
+    build: longitudinal::build,
+};
+pub const TRANSVERSE: Model = Model {
+    table: &crate::interface::transverse::TABLE,
+    build: transverse::build,
+};
+pub const OSCILLATOR: Model = Model {
+    table: &crate::interface::oscillator::TABLE,
+    build: oscillator::build,
+};
+pub const DRIVE: Model = Model {
+    table: &crate::interface::drive::TABLE,
+    build: drive::build,
+};
+
+pub const MODELS: &[Model] = &[LONGITUDINAL, TRANSVERSE, OSCILLATOR, DRIVE];
 
 pub fn model(model_identifier: &str) -> Option<&'static Model> {
     MODELS

@@ -106,15 +106,32 @@ def test_the_c_host_runs_the_default_experiment_as_fmpy_does(platform, fmu, host
             assert error <= 1e-8, f"{name}: {error:.1e} of its range"
 
 
+def guid(fmu):
+    return fmpy.read_model_description(str(fmu)).guid
+
+
+# (FMU, the FMU whose GUID it is given): a made-up GUID, another model's, and, for a scene FMU,
+# its own full model's. Each library carries its FMU's model alone and accepts its GUID alone.
+WRONG_GUIDS = [
+    ("TransverseFriction", None),
+    ("LongitudinalFriction", "TransverseFriction"),
+    ("DriveTrain", "DryFrictionOscillator"),
+    ("scenes/Fig8", "TransverseFriction"),
+    ("scenes/Table1Dahl", "scenes/Fig8"),
+]
+
+
 @pytest.mark.parametrize("platform", ["linux64", "win64"])
-def test_a_wrong_guid_is_refused_with_a_logged_message(platform, hosts, tmp_path):
+@pytest.mark.parametrize("fmu, given", WRONG_GUIDS)
+def test_a_guid_but_its_own_fmus_is_refused_with_a_logged_message(platform, fmu, given, hosts, tmp_path):
     if platform not in hosts:
         pytest.skip("no wine and mingw-w64 here")
-    with zipfile.ZipFile(FMU_DIR / "TransverseFriction.fmu") as archive:
+    with zipfile.ZipFile(FMU_DIR / f"{fmu}.fmu") as archive:
         archive.extractall(tmp_path)
-    status, _, err = run_host(hosts[platform], tmp_path, "--guid", "{00000000-0000-0000-0000-000000000000}")
+    wrong = guid(FMU_DIR / f"{given}.fmu") if given else "{00000000-0000-0000-0000-000000000000}"
+    status, _, err = run_host(hosts[platform], tmp_path, "--guid", wrong)
     assert status == 1 and "fmi2Instantiate: NULL" in err, err
-    assert 'log host status 3 [logStatusError]: fmi2Instantiate: fmuGUID "{00000000' in err, err
+    assert f'log host status 3 [logStatusError]: fmi2Instantiate: fmuGUID "{wrong}" matches no model' in err, err
 
 
 def glibc_versions(library):
