@@ -1111,3 +1111,21 @@ fn regression_serialized_state_with_bad_values_is_refused() {
         }
     }
 }
+
+/// A freed handle is refused and touches nothing, also when the next instance takes the freed
+/// one's memory: fmi2DoStep, fmi2Reset and a second fmi2FreeInstance on it once advanced, reset
+/// and ended the next instance.
+#[test]
+fn regression_a_freed_handle_never_reaches_the_next_instance() {
+    let table = MODELS[MODELS.len() - 1];
+    let step = table.default_experiment.step_size;
+    let mut freed = initialized(table);
+    freed.free_keeping_the_handle();
+    let mut next = initialized(table);
+    assert_eq!(freed.do_step(0.0, step, true), Status::Error);
+    assert_eq!(freed.reset(), Status::Error);
+    freed.free_keeping_the_handle();
+    // The next instance is where it was, at t = 0, and alive.
+    assert_eq!(next.do_step(0.0, step, true), Status::Ok);
+    assert_eq!(next.do_step(step, step, true), Status::Ok);
+}

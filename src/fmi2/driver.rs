@@ -716,6 +716,14 @@ impl Instance {
         self.retire();
     }
 
+    /// fmi2FreeInstance, after which this driver instance goes on calling with the freed handle,
+    /// as a buggy importer would.
+    pub fn free_keeping_the_handle(&mut self) {
+        // SAFETY: as for `free`; later calls with the handle must be refused by the FMU.
+        unsafe { fmi2FreeInstance(self.c()) };
+        self.freed = true;
+    }
+
     /// fmi2FreeInstance twice on the same address, as a buggy importer would.
     pub fn free_twice(&mut self) {
         // Hold the allocation lock so no driver instance can be created at this address between

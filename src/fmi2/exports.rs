@@ -18,24 +18,31 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 
-/// Addresses of live instances: calls on anything else (freed twice, NULL, garbage) are refused.
-static LIVE: Mutex<Vec<usize>> = Mutex::new(Vec::new());
+/// Live instances as (handle, address). The handle an importer holds is the instance's id, never
+/// reused, not its address: the allocator may give a freed instance's address to the next one, and
+/// a freed handle must not come to stand for it. Calls on anything else (freed, NULL, garbage)
+/// are refused.
+static LIVE: Mutex<Vec<(usize, usize)>> = Mutex::new(Vec::new());
 static NEXT_ID: AtomicU64 = AtomicU64::new(1);
 
-fn live() -> std::sync::MutexGuard<'static, Vec<usize>> {
+fn live() -> std::sync::MutexGuard<'static, Vec<(usize, usize)>> {
     // A panic while holding the lock cannot leave the list inconsistent: recover it.
     LIVE.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 /// Runs `body` on a live instance, catching panics so none crosses into the importer.
 fn with_instance(c: Component, body: impl FnOnce(&mut Instance) -> Status) -> Status {
-    if c.is_null() || !live().contains(&(c as usize)) {
+    let address = live()
+        .iter()
+        .find(|&&(handle, _)| handle == c as usize)
+        .map(|&(_, address)| address);
+    let Some(address) = address else {
         // No instance, so no logger to tell: the status is all we can give.
         return Status::Error;
-    }
-    // SAFETY: `c` is in LIVE, so it is a Box<Instance> we leaked and have not freed yet; FMI
-    // forbids calling one instance from two threads at once.
-    let instance = unsafe { &mut *(c as *mut Instance) };
+    };
+    // SAFETY: the handle is in LIVE, so `address` is a Box<Instance> we leaked and have not freed
+    // yet; FMI forbids calling one instance from two threads at once.
+    let instance = unsafe { &mut *(address as *mut Instance) };
     match catch_unwind(AssertUnwindSafe(|| body(&mut *instance))) {
         Ok(status) => status,
         Err(_) => {
@@ -223,29 +230,27 @@ pub unsafe fn instantiate(
             instance = instance.for_scene(&loaded.scene.name, &loaded.scene.values, &loaded.scope);
         }
         let address = Box::into_raw(Box::new(instance));
-        live().push(address as usize);
-        address as Component
+        // Ids start at 1, so no handle is NULL.
+        let handle = id as usize;
+        live().push((handle, address as usize));
+        handle as Component
     }))
     .unwrap_or(std::ptr::null_mut())
 }
 
 /// # Safety
-/// `c` from fmi2Instantiate; NULL, foreign or already freed pointers are ignored.
+/// `c` from fmi2Instantiate; NULL, foreign or already freed handles are ignored.
 pub unsafe extern "C" fn fmi2FreeInstance(c: Component) {
     let removed = {
         let mut live = live();
-        match live.iter().position(|&a| a == c as usize) {
-            Some(i) => {
-                live.swap_remove(i);
-                true
-            }
-            None => false,
-        }
+        live.iter()
+            .position(|&(handle, _)| handle == c as usize)
+            .map(|i| live.swap_remove(i).1)
     };
-    if removed {
+    if let Some(address) = removed {
         let _ = catch_unwind(AssertUnwindSafe(|| {
             // SAFETY: it was live, and only this call could remove it.
-            let instance = Box::from_raw(c as *mut Instance);
+            let instance = Box::from_raw(address as *mut Instance);
             for &snapshot in &instance.snapshots {
                 drop(Box::from_raw(snapshot as *mut Snapshot));
             }
