@@ -6,7 +6,7 @@ communication grid.
 - fmu-out/DriveFriction.ssp at communication steps 1e-4 s and 1e-5 s against the fmpy Jacobi
   master with held inputs (examples/drive_coupling.py): Fd and v_nut within 1e-9 (SI);
 - what each engine does with our fmi2Warning, fmi2Discard and fmi2Error, as observed (the
-  README's interoperability section says the same).
+  docs/interoperability.md says the same).
 
 Each engine run is a process of its own (engine_run.py): libcosim ends its process on some FMU
 errors.

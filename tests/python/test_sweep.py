@@ -75,7 +75,7 @@ def test_refused_point_is_recorded_and_the_others_run(local):
 
 def test_discarded_step_is_recorded_with_its_time():
     # rk4 at 50 steps a period does not hold a contact 1000 x stiffer than the paper's (the
-    # stiffness table of the README): that point alone is discarded, the paper's kt runs.
+    # stiffness table of docs/performance.md): that point alone is discarded, the paper's kt runs.
     stiff = Plan(grid={"kt": [62.86e6, 62.86e9]},
                  fixed={"solver": "rk4", "steps_per_period": 50, "f": F},
                  outputs=[Output("FFx_mean")], stop_time=Span(STOP), step=Span(1.0, "f"))
