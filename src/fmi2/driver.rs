@@ -19,6 +19,7 @@
     any(target_arch = "x86_64", target_arch = "aarch64")
 ))]
 
+use super::binary::Binary;
 use super::exports::*;
 use super::ffi::{self, CallbackFunctions, CallbackLogger, FmuState, Status};
 use std::ffi::{c_char, c_int, c_void, CStr, CString};
@@ -258,7 +259,8 @@ impl Instance {
             // SAFETY: every pointer is NULL or a live C string / struct for the whole call; the
             // FMU copies what it keeps (the logger and environment stay valid: see `record`).
             unsafe {
-                fmi2Instantiate(
+                instantiate(
+                    &Binary::ALL,
                     c_pointer(&name),
                     arguments.fmu_type,
                     c_pointer(&guid),

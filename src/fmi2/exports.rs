@@ -138,31 +138,6 @@ fn interface_of(
         .map_err(|why| format!("fmuGUID \"{guid}\" matches no model of this binary: {this}; {why}"))
 }
 
-/// fmi2Instantiate of a library that carries every model and reads scene files.
-///
-/// # Safety
-/// Pointers as the FMI 2.0 standard defines them.
-pub unsafe extern "C" fn fmi2Instantiate(
-    instance_name: FmiString,
-    fmu_type: c_int,
-    fmu_guid: FmiString,
-    fmu_resource_location: FmiString,
-    functions: *const CallbackFunctions,
-    visible: Boolean,
-    logging_on: Boolean,
-) -> Component {
-    instantiate(
-        &Binary::ALL,
-        instance_name,
-        fmu_type,
-        fmu_guid,
-        fmu_resource_location,
-        functions,
-        visible,
-        logging_on,
-    )
-}
-
 /// fmi2Instantiate of a library that carries what `binary` says.
 ///
 /// # Safety
