@@ -307,6 +307,8 @@ enum Op {
     Null,
     Free,
     FreeTwice,
+    /// fmi2FreeInstance, then go on calling with the freed handle while other instances are made.
+    FreeKeepingHandle,
     Reinstantiate,
 }
 
@@ -359,6 +361,8 @@ const OPS: &[Op] = &[
     Op::Null,
     Op::Free,
     Op::FreeTwice,
+    Op::FreeKeepingHandle,
+    Op::Reinstantiate,
     Op::Reinstantiate,
 ];
 
@@ -397,7 +401,7 @@ impl Op {
             Op::OutputDerivatives => "fmi2GetRealOutputDerivatives",
             Op::DebugLogging => "fmi2SetDebugLogging",
             Op::Null => "",
-            Op::Free | Op::FreeTwice => "fmi2FreeInstance",
+            Op::Free | Op::FreeTwice | Op::FreeKeepingHandle => "fmi2FreeInstance",
             Op::Reinstantiate => "fmi2Instantiate",
         }
     }
@@ -515,7 +519,11 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
         };
         if let Op::Reinstantiate = op {
             let table = MODELS[rng.below(MODELS.len())];
+            // A slot whose instance was freed keeps its handle beside the new instance (which
+            // may take the freed memory), so later calls test that the handle stays dead.
+            let keep = slots[k].as_ref().is_some_and(|s| s.instance.is_freed()) && slots.len() < 4;
             match instantiate(&mut rng, table, "again") {
+                Ok(slot) if keep => slots.push(Some(slot)),
                 Ok(slot) => slots[k] = Some(slot),
                 Err(e) if e.is_empty() => {}
                 Err(e) => return Err(e),
@@ -814,6 +822,10 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
             }
             Op::FreeTwice => {
                 slot.instance.free_twice();
+                None
+            }
+            Op::FreeKeepingHandle => {
+                slot.instance.free_keeping_the_handle();
                 None
             }
             Op::Reinstantiate => unreachable!("handled above"),

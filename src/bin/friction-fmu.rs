@@ -37,9 +37,11 @@ fn build_scenes(
         .map(|file| scene_file::read(file))
         .collect::<Result<Vec<_>, _>>()?;
     for (i, scene) in scenes.iter().enumerate() {
-        if let Some(other) = scenes[..i].iter().position(|s| s.name == scene.name) {
+        // One letter case apart is the same file on Windows' and macOS's file systems.
+        let same = |s: &scene_file::SceneFile| s.name.eq_ignore_ascii_case(&scene.name);
+        if let Some(other) = scenes[..i].iter().position(same) {
             return Err(format!(
-                "{} and {} both name their FMU \"{}\": expected one FMU per name",
+                "{} and {} both name their FMU \"{}\" (up to letter case): expected one FMU per name",
                 files[other].display(),
                 files[i].display(),
                 scene.name

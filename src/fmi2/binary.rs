@@ -7,9 +7,10 @@
 
 use crate::scene_file::registry::{self, Loaded};
 use crate::scenes::{Model, MODELS};
+use std::sync::Arc;
 
 /// Finds the scene file behind a GUID (see [`registry::for_guid`]).
-pub type SceneFiles = fn(&str, Option<&str>, &'static [Model]) -> Result<&'static Loaded, String>;
+pub type SceneFiles = fn(&str, Option<&str>, &'static [Model]) -> Result<Arc<Loaded>, String>;
 
 /// The models a library carries and which GUIDs it accepts.
 pub struct Binary {

@@ -16,7 +16,7 @@ use crate::scenes::Model;
 use std::ffi::{c_int, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 /// Live instances as (handle, address). The handle an importer holds is the instance's id, never
 /// reused, not its address: the allocator may give a freed instance's address to the next one, and
@@ -102,7 +102,7 @@ fn interface_of(
     binary: &Binary,
     guid: &str,
     resource_location: Option<&str>,
-) -> Result<(&'static Model, &'static str, Option<&'static Loaded>), String> {
+) -> Result<(&'static Model, &'static str, Option<Arc<Loaded>>), String> {
     let full: Vec<(&'static Model, &'static str)> = if binary.full_models {
         binary
             .models
@@ -134,7 +134,8 @@ fn interface_of(
         ));
     };
     scene_files(guid, resource_location, binary.models)
-        .map(|loaded| (loaded.scene.model, loaded.guid.as_str(), Some(loaded)))
+        // A scene file's instance takes its GUID from the file.
+        .map(|loaded| (loaded.scene.model, "", Some(loaded)))
         .map_err(|why| format!("fmuGUID \"{guid}\" matches no model of this binary: {this}; {why}"))
 }
 
@@ -202,7 +203,7 @@ pub unsafe fn instantiate(
         let id = NEXT_ID.fetch_add(1, Ordering::Relaxed);
         let mut instance = Instance::new(id, model, guid, logger, logging_on != FALSE);
         if let Some(loaded) = scene {
-            instance = instance.for_scene(&loaded.scene.name, &loaded.scene.values, &loaded.scope);
+            instance = instance.for_scene(loaded);
         }
         let address = Box::into_raw(Box::new(instance));
         // Ids start at 1, so no handle is NULL.
@@ -218,9 +219,15 @@ pub unsafe fn instantiate(
 pub unsafe extern "C" fn fmi2FreeInstance(c: Component) {
     let removed = {
         let mut live = live();
-        live.iter()
+        let removed = live
+            .iter()
             .position(|&(handle, _)| handle == c as usize)
-            .map(|i| live.swap_remove(i).1)
+            .map(|i| live.swap_remove(i).1);
+        // The list's memory goes with the last instance, so unloading the library leaks nothing.
+        if live.is_empty() {
+            *live = Vec::new();
+        }
+        removed
     };
     if let Some(address) = removed {
         let _ = catch_unwind(AssertUnwindSafe(|| {
@@ -229,6 +236,8 @@ pub unsafe extern "C" fn fmi2FreeInstance(c: Component) {
             for &snapshot in &instance.snapshots {
                 drop(Box::from_raw(snapshot as *mut Snapshot));
             }
+            drop(instance);
+            crate::scene_file::registry::release_unused();
         }));
     }
 }
@@ -702,7 +711,7 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
         let Some(slot) = state.as_mut() else {
             return null_argument(instance, "fmi2DeSerializeFMUstate", "FMUstate");
         };
-        let snapshot = match Snapshot::from_bytes(data, instance.guid, instance.id) {
+        let snapshot = match Snapshot::from_bytes(data, instance.guid(), instance.id) {
             Ok(snapshot) => snapshot,
             Err(message) => return instance.error(&format!("fmi2DeSerializeFMUstate: {message}")),
         };

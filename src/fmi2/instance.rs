@@ -10,7 +10,9 @@ use crate::interface::interpolates_inputs;
 use crate::interface::unread_inputs::UnreadInputs;
 use crate::interface::values::{check_value, ValueSet};
 use crate::interface::variable::{Causality, Kind, Variability, Variable, LOG_CATEGORIES};
+use crate::scene_file::registry::Loaded;
 use crate::scenes::{Model, Scene, Scope, HELD_INPUTS};
+use std::sync::Arc;
 
 /// Where an instance is in its life (FMI 2.0 co-simulation state machine).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -82,9 +84,10 @@ pub const STATE_PHASES: &[Phase] = &[
 pub struct Instance {
     pub id: u64,
     pub model: &'static Model,
-    /// The FMU's modelIdentifier: the model's, or a scene file's name.
-    pub name: &'static str,
-    pub guid: &'static str,
+    /// The full model's GUID; a scene file's instance takes its own from `scene_file`.
+    model_guid: &'static str,
+    /// The scene file a scene FMU's instance was made from; it lives as long as its instances.
+    scene_file: Option<Arc<Loaded>>,
     logger: Logger,
     log_calls: bool,
     pub phase: Phase,
@@ -123,8 +126,8 @@ impl Instance {
         Instance {
             id,
             model,
-            name: model.table.model_identifier,
-            guid,
+            model_guid: guid,
+            scene_file: None,
             logger,
             log_calls,
             phase: Instantiated,
@@ -150,14 +153,28 @@ impl Instance {
         }
     }
 
-    /// The instance of a scene file's FMU: `name` is its modelIdentifier, `values` replace the
-    /// model's start values (also for fmi2Reset), `scope` hides what its interface leaves out.
-    pub fn for_scene(mut self, name: &'static str, values: &ValueSet, scope: &Scope) -> Self {
-        self.name = name;
-        self.values.clone_from(values);
-        self.defaults.clone_from(values);
-        self.scope.clone_from(scope);
+    /// The instance of a scene file's FMU: the file's name is its modelIdentifier, its values
+    /// replace the model's start values (also for fmi2Reset), its scope hides what its interface
+    /// leaves out.
+    pub fn for_scene(mut self, loaded: Arc<Loaded>) -> Self {
+        self.values.clone_from(&loaded.scene.values);
+        self.defaults.clone_from(&loaded.scene.values);
+        self.scope.clone_from(&loaded.scope);
+        self.scene_file = Some(loaded);
         self
+    }
+
+    /// The FMU's modelIdentifier: the model's, or a scene file's name.
+    pub fn name(&self) -> &str {
+        self.scene_file
+            .as_ref()
+            .map_or(self.model.table.model_identifier, |f| &f.scene.name)
+    }
+
+    pub fn guid(&self) -> &str {
+        self.scene_file
+            .as_ref()
+            .map_or(self.model_guid, |f| &f.guid)
     }
 
     pub fn error(&self, message: &str) -> Status {
@@ -322,7 +339,7 @@ impl Instance {
             ))),
             None => Err(self.error(&format!(
                 "{function}: unknown value reference {value_reference}: {} has no variable with it",
-                self.name
+                self.name()
             ))),
         }
     }

@@ -42,7 +42,7 @@ impl Snapshot {
     pub fn take(instance: &Instance) -> Snapshot {
         Snapshot {
             owner: instance.id,
-            guid: instance.guid.to_string(),
+            guid: instance.guid().to_string(),
             phase: instance.phase,
             start_time: instance.start_time,
             stop_time: instance.stop_time,

@@ -219,21 +219,95 @@ pub fn scene(
     })
 }
 
-/// A modelIdentifier names files and C symbols' library: a C identifier, and no full model's.
+/// C keywords (C89 to C23), which no C identifier may be: an importer generating C from the
+/// modelDescription would fail on them.
+const C_KEYWORDS: &[&str] = &[
+    "alignas",
+    "alignof",
+    "auto",
+    "bool",
+    "break",
+    "case",
+    "char",
+    "const",
+    "constexpr",
+    "continue",
+    "default",
+    "do",
+    "double",
+    "else",
+    "enum",
+    "extern",
+    "false",
+    "float",
+    "for",
+    "goto",
+    "if",
+    "inline",
+    "int",
+    "long",
+    "nullptr",
+    "register",
+    "restrict",
+    "return",
+    "short",
+    "signed",
+    "sizeof",
+    "static",
+    "static_assert",
+    "struct",
+    "switch",
+    "thread_local",
+    "true",
+    "typedef",
+    "typeof",
+    "typeof_unqual",
+    "union",
+    "unsigned",
+    "void",
+    "volatile",
+    "while",
+];
+
+/// Names Windows reserves for devices, with any extension: `CON.dll` cannot be a file there.
+const WINDOWS_DEVICES: &[&str] = &[
+    "con", "prn", "aux", "nul", "com1", "com2", "com3", "com4", "com5", "com6", "com7", "com8",
+    "com9", "lpt1", "lpt2", "lpt3", "lpt4", "lpt5", "lpt6", "lpt7", "lpt8", "lpt9",
+];
+
+/// A modelIdentifier names the FMU's files and its library's C symbols' prefix: a C identifier
+/// that is no keyword, not reserved to C implementations (a leading _), not an FMI function's
+/// (fmi2..., fmi3...), no Windows device, and no full model's in any letter case (the files
+/// would overwrite each other on a case-insensitive file system).
 fn check_name(name: &str, models: &[Model]) -> Result<(), String> {
     let mut chars = name.chars();
-    let valid = chars
-        .next()
-        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+    let valid = chars.next().is_some_and(|c| c.is_ascii_alphabetic())
         && chars.all(|c| c.is_ascii_alphanumeric() || c == '_');
     if !valid {
         return Err(format!(
-            "\"{name}\" is not a valid modelIdentifier: expected a letter or _ followed by letters, digits or _"
+            "\"{name}\" is not a valid modelIdentifier: expected a letter followed by letters, digits or _"
         ));
     }
-    if models.iter().any(|m| m.table.model_identifier == name) {
+    let lower = name.to_ascii_lowercase();
+    let reserved = if C_KEYWORDS.contains(&name) {
+        Some("a C keyword")
+    } else if lower.starts_with("fmi2") || lower.starts_with("fmi3") {
+        Some("reserved for the FMI functions (fmi2..., fmi3...)")
+    } else if WINDOWS_DEVICES.contains(&lower.as_str()) {
+        Some("a device name on Windows, where no file may take it")
+    } else {
+        None
+    };
+    if let Some(why) = reserved {
+        return Err(format!("\"{name}\" is {why}: expected another name"));
+    }
+    if let Some(model) = models
+        .iter()
+        .find(|m| m.table.model_identifier.eq_ignore_ascii_case(name))
+    {
         return Err(format!(
-            "\"{name}\" is the name of a full model: expected another name"
+            "\"{name}\" is the name of the full model {} up to letter case, and the files would collide on a case-insensitive file system: expected another name",
+            model.table.model_identifier
         ));
     }
     Ok(())

@@ -1,11 +1,12 @@
-//! Scene files loaded by fmi2Instantiate, kept for the life of the process: each distinct
-//! (path, content) is parsed once and leaked once, so instances can borrow it as `'static` and a
-//! master that instantiates thousands of times does not parse or leak thousands of times.
+//! Scene files loaded by fmi2Instantiate. Each distinct (path, content) is parsed once while
+//! instances made from it live, so a master that instantiates many times from one FMU parses it
+//! once; the last instance to go frees it, so a process that loads ever other files (or the same
+//! file edited) holds only what its live instances use.
 
 use super::SceneFile;
 use crate::scenes::{Model, Scope};
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex, MutexGuard, Weak};
 
 /// A checked scene file with what its instances need, computed once.
 pub struct Loaded {
@@ -17,33 +18,55 @@ pub struct Loaded {
 
 struct Entry {
     path: PathBuf,
-    loaded: &'static Loaded,
+    loaded: Weak<Loaded>,
 }
 
 static LOADED: Mutex<Vec<Entry>> = Mutex::new(Vec::new());
 
-/// The scene file at `path`, parsed on first sight of this (path, content).
-pub fn load(path: &Path, models: &'static [Model]) -> Result<&'static Loaded, String> {
+fn loaded() -> MutexGuard<'static, Vec<Entry>> {
+    // A panic elsewhere while holding the lock cannot leave the list inconsistent: recover it.
+    LOADED.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// The scene file at `path`, parsed unless a live instance already uses this (path, content).
+pub fn load(path: &Path, models: &'static [Model]) -> Result<Arc<Loaded>, String> {
     let file = path.display().to_string();
     let text =
         std::fs::read_to_string(path).map_err(|e| format!("{file}: cannot read the file: {e}"))?;
-    // A panic elsewhere while holding the lock cannot leave the list inconsistent: recover it.
-    let mut loaded = LOADED.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(entry) = loaded
+    let mut entries = loaded();
+    let live = entries
         .iter()
-        .find(|e| e.path == path && e.loaded.scene.text == text)
-    {
-        return Ok(entry.loaded);
+        .filter(|e| e.path == path)
+        .filter_map(|e| e.loaded.upgrade())
+        .find(|l| l.scene.text == text);
+    if let Some(live) = live {
+        return Ok(live);
     }
     let scene = super::parse_for(&file, &text, models)?;
     let (guid, _) = scene.model_description();
     let scope = scene.scope();
-    let entry: &'static Loaded = Box::leak(Box::new(Loaded { scene, guid, scope }));
-    loaded.push(Entry {
+    let loaded = Arc::new(Loaded { scene, guid, scope });
+    entries.push(Entry {
         path: path.to_path_buf(),
-        loaded: entry,
+        loaded: Arc::downgrade(&loaded),
     });
-    Ok(entry)
+    Ok(loaded)
+}
+
+/// Forgets the files no instance uses any more; called when an instance is freed. The list's
+/// memory goes with its last entry, so unloading the library leaves nothing behind.
+pub fn release_unused() {
+    let mut entries = loaded();
+    entries.retain(|e| e.loaded.strong_count() > 0);
+    if entries.is_empty() {
+        *entries = Vec::new();
+    }
+}
+
+/// How many versions of the file at `path` the registry holds.
+#[cfg(test)]
+fn held(path: &Path) -> usize {
+    loaded().iter().filter(|e| e.path == path).count()
 }
 
 /// The scene file behind a GUID that is no full model's: `resources/scene.toml` under the
@@ -53,7 +76,7 @@ pub fn for_guid(
     guid: &str,
     resource_location: Option<&str>,
     models: &'static [Model],
-) -> Result<&'static Loaded, String> {
+) -> Result<Arc<Loaded>, String> {
     let location = resource_location.filter(|l| !l.is_empty()).ok_or_else(|| {
         "fmuResourceLocation is NULL or empty, so no resources/scene.toml of a scene FMU can confirm it".to_string()
     })?;
@@ -79,13 +102,15 @@ pub fn for_guid(
 
 #[cfg(test)]
 mod tests {
-    use super::for_guid;
+    use super::{for_guid, held, load, release_unused};
     use crate::scenes::MODELS;
+    use std::sync::Arc;
 
     const SCENE: &str = "name = \"Cached\"\nmodel = \"DryFrictionOscillator\"\nlaw = \"exact\"\nsolver = \"rk4\"\noutputs = [\"u\"]\n[experiment]\nstart = 0\nstop = 1\nstep = 0.1\n";
 
     /// Oracle: the GUID of the packed XML (`model_description`); the registry hands out one
-    /// leaked entry per (path, content), and a changed file is a new entry with another GUID.
+    /// entry per (path, content) while it is used, and a changed file is a new entry with
+    /// another GUID.
     #[test]
     fn scene_resources_are_checked_against_the_guid_and_parsed_once() {
         let dir = std::env::temp_dir().join(format!("scene registry {}", std::process::id()));
@@ -99,7 +124,7 @@ mod tests {
         let uri = format!("file://{}", dir.display()).replace(' ', "%20");
         let first = for_guid(&guid, Some(&uri), MODELS).unwrap();
         let second = for_guid(&guid, Some(&format!("{uri}/")), MODELS).unwrap();
-        assert!(std::ptr::eq(first, second));
+        assert!(Arc::ptr_eq(&first, &second));
         assert_eq!(first.scene.name, "Cached");
         assert!(first.scope.fixes(crate::interface::oscillator::vr::P));
 
@@ -120,6 +145,27 @@ mod tests {
             .err()
             .unwrap()
             .contains("there is no scene file"));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// Oracle: counting. A file is held while something uses it and forgotten with its last
+    /// user, so loading ever-changing files (a master instantiating and freeing for hours, an
+    /// edited file, another path) holds at most what is live.
+    #[test]
+    fn files_nothing_uses_are_forgotten() {
+        let dir = std::env::temp_dir().join(format!("scene release {}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("scene.toml");
+        for cycle in 0..200 {
+            std::fs::write(&file, format!("# cycle {cycle}\n{SCENE}")).unwrap();
+            let first = load(&file, MODELS).unwrap();
+            let again = load(&file, MODELS).unwrap();
+            assert!(Arc::ptr_eq(&first, &again));
+            assert_eq!(held(&file), 1);
+            drop((first, again));
+            release_unused();
+            assert_eq!(held(&file), 0, "cycle {cycle}");
+        }
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -197,12 +197,35 @@ fn unknown_models_and_names_are_refused() {
     );
     refused(
         &variant("name = \"Fig4a\"", "name = \"Fig 4a\""),
-        &["key `name`", "expected a letter or _"],
+        &["key `name`", "expected a letter followed by"],
     );
     refused(
         &variant("name = \"Fig4a\"", "name = \"TransverseFriction\""),
-        &["key `name`", "full model"],
+        &["key `name`", "full model TransverseFriction"],
     );
+    // The same file as the full model's on a case-insensitive file system.
+    refused(
+        &variant("name = \"Fig4a\"", "name = \"transverseFRICTION\""),
+        &[
+            "key `name`",
+            "up to letter case",
+            "case-insensitive file system",
+        ],
+    );
+    for (name, why) in [
+        ("int", "is a C keyword: expected another name"),
+        ("_", "expected a letter followed by"),
+        ("_Fig4a", "expected a letter followed by"),
+        ("fmi2Instantiate", "reserved for the FMI functions"),
+        ("FMI3x", "reserved for the FMI functions"),
+        ("Con", "a device name on Windows"),
+        ("lpt1", "a device name on Windows"),
+    ] {
+        refused(
+            &variant("name = \"Fig4a\"", &format!("name = \"{name}\"")),
+            &["key `name`", why],
+        );
+    }
 }
 
 #[test]

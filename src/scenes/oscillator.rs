@@ -298,17 +298,27 @@ impl Oscillator {
     }
 
     /// Advances to t_end (not past the next period boundary); returns the largest |u| met.
-    fn advance(&mut self, t_end: f64, log: Option<&mut Vec<Event>>) -> Result<f64, String> {
+    fn advance(
+        &mut self,
+        t_end: f64,
+        log: Option<&mut Vec<Event>>,
+        at_start: &Work,
+    ) -> Result<f64, String> {
         let held = self.held;
         match &mut self.core {
-            Core::Exact(switch) => switch.advance(&mut self.state, t_end, held, log),
+            Core::Exact(switch) => switch.advance(
+                &mut self.state,
+                t_end,
+                held,
+                log,
+                (&mut self.work, at_start),
+            ),
             Core::Regularized(equations, solver) => {
                 equations.held = held;
                 let tracks = self.tracks_amplitude;
                 let mut largest = self.state.u.abs();
-                let at_start = self.work;
                 while self.state.t < t_end {
-                    within_step_budget(&self.work, &at_start, self.state.t)?;
+                    within_step_budget(&self.work, at_start, self.state.t)?;
                     let t0 = self.state.t;
                     // Far from t = 0 a sub-step can be lost to round-off (t0 + max == t0):
                     // then the solver takes the rest at once rather than the loop stalling.
@@ -371,7 +381,7 @@ impl Oscillator {
                 } else {
                     t_end
                 };
-            let largest = self.advance(segment_end, log.as_deref_mut())?;
+            let largest = self.advance(segment_end, log.as_deref_mut(), &at_start)?;
             self.state.t = segment_end;
             self.amplitude.add(largest, segment_end, self.state.u.abs());
         }

@@ -174,6 +174,16 @@ impl Params {
         }
     }
 
+    /// The angular frequency of the body on the stuck contact and the drive, sqrt((kt + kd)/m):
+    /// the fastest motion an explicit step of the mechanics must resolve (none when held).
+    pub fn sticking_frequency(&self) -> f64 {
+        if self.held {
+            0.0
+        } else {
+            ((self.law.kt + self.kd) / self.m).sqrt()
+        }
+    }
+
     #[inline]
     pub fn contact(&self, t: f64, y: &[f64]) -> Contact {
         self.contact_moving(y, self.support_velocity(t))

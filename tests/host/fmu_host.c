@@ -2,7 +2,11 @@
  * extracted FMU, loads the binary for its own platform, runs the DefaultExperiment with a real
  * variadic logger and writes every Real output at every communication point as CSV.
  *
- *   fmu_host DIR [--guid GUID]       DIR: the extracted FMU; --guid: instantiate with another GUID
+ *   fmu_host DIR [--guid GUID] [--cycles N] [--steps K]
+ *
+ * DIR: the extracted FMU; --guid: instantiate with another GUID; --cycles: load, run, free and
+ * unload the library N times (the CSV is the last cycle's), as a host that reopens FMUs for
+ * hours does; --steps: run only the experiment's first K steps.
  *
  * Build: gcc -O2 -o fmu_host fmu_host.c -ldl
  *        x86_64-w64-mingw32-gcc -O2 -o fmu_host.exe fmu_host.c
@@ -101,43 +105,38 @@ static int attribute(const char *tag, const char *name, char *value, size_t size
     return 0;
 }
 
-int main(int argc, char **argv) {
-    char path[4096], guid[MAX_TEXT], identifier[MAX_TEXT], text[MAX_TEXT], uri[4200];
+/* What the host learnt from modelDescription.xml and its arguments. */
+typedef struct {
+    char guid[MAX_TEXT], identifier[MAX_TEXT];
     char names[MAX_OUTPUTS][MAX_TEXT];
     fmi2ValueReference references[MAX_OUTPUTS];
-    double values[MAX_OUTPUTS], start, stop, step;
-    size_t outputs = 0, i;
-    const char *directory, *p, *xml_end;
-    char *xml;
-    int failed = 0;
-    long steps, k;
-    void *library;
-    fmi2Component instance;
-    fmi2Status status;
+    size_t outputs;
+    double start, stop, step;
+    long steps;
+} Experiment;
 
-    if (argc != 2 && !(argc == 4 && strcmp(argv[2], "--guid") == 0)) {
-        fprintf(stderr, "usage: %s EXTRACTED_FMU_DIR [--guid GUID]\n", argv[0]);
-        return 2;
-    }
-    directory = argv[1];
+/* Reads modelDescription.xml under `directory`; 0 on success, else the exit status. */
+static int read_experiment(const char *directory, Experiment *e) {
+    char path[4096], text[MAX_TEXT];
+    const char *p, *xml_end;
+    char *xml;
     snprintf(path, sizeof path, "%s" SEPARATOR "modelDescription.xml", directory);
     xml = read_file(path);
-    if (!xml) {
-        fprintf(stderr, "cannot read %s\n", path);
-        return 2;
-    }
+    if (!xml) return fprintf(stderr, "cannot read %s\n", path), 2;
     p = strstr(xml, "<fmiModelDescription");
-    if (!p || !attribute(p, "guid", guid, sizeof guid)) return fprintf(stderr, "no guid\n"), 2;
+    if (!p || !attribute(p, "guid", e->guid, sizeof e->guid)) return fprintf(stderr, "no guid\n"), 2;
     p = strstr(xml, "<CoSimulation");
-    if (!p || !attribute(p, "modelIdentifier", identifier, sizeof identifier))
+    if (!p || !attribute(p, "modelIdentifier", e->identifier, sizeof e->identifier))
         return fprintf(stderr, "no CoSimulation modelIdentifier\n"), 2;
     p = strstr(xml, "<DefaultExperiment");
     if (!p || !attribute(p, "startTime", text, sizeof text)) return fprintf(stderr, "no experiment\n"), 2;
-    start = strtod(text, NULL);
+    e->start = strtod(text, NULL);
     if (!attribute(p, "stopTime", text, sizeof text)) return fprintf(stderr, "no stopTime\n"), 2;
-    stop = strtod(text, NULL);
+    e->stop = strtod(text, NULL);
     if (!attribute(p, "stepSize", text, sizeof text)) return fprintf(stderr, "no stepSize\n"), 2;
-    step = strtod(text, NULL);
+    e->step = strtod(text, NULL);
+    e->steps = (long)((e->stop - e->start) / e->step + 0.5);
+    e->outputs = 0;
     xml_end = strstr(xml, "</ModelVariables>");
     for (p = strstr(xml, "<ScalarVariable"); p && p < xml_end; p = strstr(p + 1, "<ScalarVariable")) {
         const char *type = strchr(p, '>') + 1;
@@ -145,19 +144,35 @@ int main(int argc, char **argv) {
         if (!attribute(p, "causality", text, sizeof text) || strcmp(text, "output") != 0 ||
             strncmp(type, "<Real", 5) != 0)
             continue;
-        if (outputs == MAX_OUTPUTS) return fprintf(stderr, "more than %d outputs\n", MAX_OUTPUTS), 2;
-        attribute(p, "name", names[outputs], MAX_TEXT);
+        if (e->outputs == MAX_OUTPUTS) return fprintf(stderr, "more than %d outputs\n", MAX_OUTPUTS), 2;
+        attribute(p, "name", e->names[e->outputs], MAX_TEXT);
         attribute(p, "valueReference", text, sizeof text);
-        references[outputs++] = (fmi2ValueReference)strtoul(text, NULL, 10);
+        e->references[e->outputs++] = (fmi2ValueReference)strtoul(text, NULL, 10);
     }
-    if (argc == 4) snprintf(guid, sizeof guid, "%s", argv[3]);
+    free(xml);
+    return 0;
+}
+
+/* Loads the library, runs the experiment, frees the instance and unloads the library. Prints
+ * the CSV when `print` is set. 0 when every call returned fmi2OK, 1 when one did not, 2 for a
+ * load error. */
+static int run(const char *directory, const Experiment *e, int print) {
+    char path[4096], uri[4200];
+    double values[MAX_OUTPUTS];
+    size_t i;
+    int failed = 0;
+    long k;
+    void *library;
+    fmi2Component instance;
+    fmi2Status status;
 
     snprintf(path, sizeof path, "%s" SEPARATOR "binaries" SEPARATOR PLATFORM SEPARATOR "%s" EXTENSION,
-             directory, identifier);
+             directory, e->identifier);
 #ifdef _WIN32
     library = (void *)LoadLibraryA(path);
     if (!library) return fprintf(stderr, "LoadLibrary %s: error %lu\n", path, GetLastError()), 2;
 #define SYMBOL(name) (void *)GetProcAddress((HMODULE)library, name)
+#define UNLOAD() FreeLibrary((HMODULE)library)
     {
         char full[4096];
         GetFullPathNameA(directory, sizeof full, full, NULL);
@@ -169,6 +184,7 @@ int main(int argc, char **argv) {
     library = dlopen(path, RTLD_NOW | RTLD_LOCAL);
     if (!library) return fprintf(stderr, "dlopen: %s\n", dlerror()), 2;
 #define SYMBOL(name) dlsym(library, name)
+#define UNLOAD() dlclose(library)
     {
         char full[PATH_MAX];
         if (!realpath(directory, full)) return fprintf(stderr, "no path %s\n", directory), 2;
@@ -189,9 +205,10 @@ int main(int argc, char **argv) {
             !terminate || !do_step || !get_real || !free_instance)
             return fprintf(stderr, "%s lacks an fmi2 function\n", path), 2;
 
-        instance = instantiate("host", 1 /* fmi2CoSimulation */, guid, uri, &callbacks, 0, 0);
+        instance = instantiate("host", 1 /* fmi2CoSimulation */, e->guid, uri, &callbacks, 0, 0);
         if (!instance) {
             fprintf(stderr, "fmi2Instantiate: NULL\n");
+            UNLOAD();
             return 1;
         }
 #define CALL(call)                                                    \
@@ -199,25 +216,52 @@ int main(int argc, char **argv) {
         fprintf(stderr, "%s: status %d\n", #call, status);            \
         failed = 1;                                                   \
     }
-        CALL(setup_experiment(instance, 0, 0.0, start, 1, stop));
+        CALL(setup_experiment(instance, 0, 0.0, e->start, 1, e->stop));
         CALL(enter_initialization(instance));
         CALL(exit_initialization(instance));
-        printf("time");
-        for (i = 0; i < outputs; i++) printf(",%s", names[i]);
-        printf("\n");
-        steps = (long)((stop - start) / step + 0.5);
-        for (k = 0; k <= steps && !failed; k++) {
-            double t = start + (double)k * step;
-            CALL(get_real(instance, references, outputs, values));
-            printf("%.17g", t);
-            for (i = 0; i < outputs; i++) printf(",%.17g", values[i]);
+        if (print) {
+            printf("time");
+            for (i = 0; i < e->outputs; i++) printf(",%s", e->names[i]);
             printf("\n");
+        }
+        for (k = 0; k <= e->steps && !failed; k++) {
+            double t = e->start + (double)k * e->step;
+            CALL(get_real(instance, e->references, e->outputs, values));
+            if (print) {
+                printf("%.17g", t);
+                for (i = 0; i < e->outputs; i++) printf(",%.17g", values[i]);
+                printf("\n");
+            }
             /* Each step ends on the grid point start + (k + 1) step, as fmpy's master does. */
-            if (k < steps) CALL(do_step(instance, t, start + (double)(k + 1) * step - t, 1));
+            if (k < e->steps) CALL(do_step(instance, t, e->start + (double)(k + 1) * e->step - t, 1));
         }
         CALL(terminate(instance));
         free_instance(instance);
     }
-    free(xml);
+    UNLOAD();
     return failed;
+}
+
+int main(int argc, char **argv) {
+    static Experiment experiment;
+    const char *guid = NULL;
+    long cycles = 1, steps = -1, cycle;
+    int a, status = 0;
+
+    for (a = 2; a + 1 < argc; a += 2) {
+        if (strcmp(argv[a], "--guid") == 0) guid = argv[a + 1];
+        else if (strcmp(argv[a], "--cycles") == 0) cycles = strtol(argv[a + 1], NULL, 10);
+        else if (strcmp(argv[a], "--steps") == 0) steps = strtol(argv[a + 1], NULL, 10);
+        else break;
+    }
+    if (argc < 2 || a != argc || cycles < 1) {
+        fprintf(stderr, "usage: %s EXTRACTED_FMU_DIR [--guid GUID] [--cycles N] [--steps K]\n", argv[0]);
+        return 2;
+    }
+    if ((status = read_experiment(argv[1], &experiment)) != 0) return status;
+    if (guid) snprintf(experiment.guid, sizeof experiment.guid, "%s", guid);
+    if (steps >= 0 && steps < experiment.steps) experiment.steps = steps;
+    for (cycle = 1; cycle <= cycles && status == 0; cycle++)
+        status = run(argv[1], &experiment, cycle == cycles);
+    return status;
 }

@@ -106,6 +106,28 @@ def test_the_c_host_runs_the_default_experiment_as_fmpy_does(platform, fmu, host
             assert error <= 1e-8, f"{name}: {error:.1e} of its range"
 
 
+# A full FMU of each model and a scene FMU of each kind that reads a scene file.
+UNLOADED = ["LongitudinalFriction", "TransverseFriction", "DryFrictionOscillator", "DriveTrain",
+            "scenes/Table1Dahl", "scenes/Fig8", "scenes/OscillatorFig1"]
+
+
+@pytest.mark.parametrize("fmu", UNLOADED)
+def test_loading_and_unloading_a_library_leaks_nothing(fmu, hosts, tmp_path):
+    """valgrind's leak check over three cycles of dlopen, a short run, fmi2FreeInstance and dlclose:
+    nothing definitely lost (what a library keeps for its live instances goes with the last)."""
+    if not shutil.which("valgrind"):
+        if os.environ.get("CI"):
+            pytest.fail("CI runs the leak check: tests/run.sh installs valgrind")
+        pytest.skip("no valgrind here")
+    with zipfile.ZipFile(FMU_DIR / f"{fmu}.fmu") as archive:
+        archive.extractall(tmp_path)
+    done = subprocess.run(["valgrind", "--leak-check=full", "--errors-for-leak-kinds=definite",
+                           "--error-exitcode=9", "-q", *hosts["linux64"], str(tmp_path),
+                           "--cycles", "3", "--steps", "20"],
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr[-3000:]
+
+
 def guid(fmu):
     return fmpy.read_model_description(str(fmu)).guid
 

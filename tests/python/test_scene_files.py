@@ -324,3 +324,24 @@ def test_bad_scene_file_fails_the_build_with_its_message(tmp_path, change, fragm
     for fragment in fragments:
         assert fragment in result.stderr, (fragment, result.stderr)
     assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
+
+
+@pytest.mark.parametrize("name", ["int", "fmi2Instantiate", "transversefriction", "NUL"])
+def test_a_name_no_importer_or_file_system_can_take_is_refused(tmp_path, name):
+    text = (ROOT / "scenes" / "fig4a.toml").read_text().replace('name = "Fig4a"', f'name = "{name}"', 1)
+    file = tmp_path / "bad.toml"
+    file.write_text(text)
+    result = build(file, "--out", tmp_path / "out")
+    assert result.returncode != 0 and "key `name`" in result.stderr, result.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_two_scene_files_whose_names_differ_only_in_letter_case_are_refused(tmp_path):
+    """On Windows' and macOS's file systems Fig4a.fmu and FIG4A.fmu are one file."""
+    text = (ROOT / "scenes" / "fig4a.toml").read_text()
+    (tmp_path / "a.toml").write_text(text)
+    (tmp_path / "b.toml").write_text(text.replace('name = "Fig4a"', 'name = "FIG4A"', 1))
+    result = build(tmp_path / "a.toml", tmp_path / "b.toml", "--out", tmp_path / "out")
+    assert result.returncode != 0
+    assert 'both name their FMU "FIG4A" (up to letter case)' in result.stderr, result.stderr
+    assert not (tmp_path / "out").exists()

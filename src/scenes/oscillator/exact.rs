@@ -10,6 +10,7 @@
 
 use super::Forced;
 use crate::solve::expm::{expm, mul_vec, Matrix};
+use crate::solve::{within_step_budget, Work};
 use std::f64::consts::{PI, TAU};
 
 /// What the mass is doing.
@@ -161,22 +162,28 @@ impl Switch {
 
     /// Advances `st` to `t_end`. Returns the largest |u| met (u has its extremes where u' = 0,
     /// which are events or stuck phases, so this is exact). `log` receives every mode change.
+    /// Each grid step and event counts in `work` as a step, within the communication step's
+    /// budget from `at_start`: a grid too fine for the step (a tiny m/c, say) ends in an error,
+    /// not in a call that never returns.
     pub fn advance(
         &self,
         st: &mut State,
         t_end: f64,
         held: f64,
         mut log: Option<&mut Vec<Event>>,
+        (work, at_start): (&mut Work, &Work),
     ) -> Result<f64, String> {
         let mut largest = st.u.abs();
         let budget = 10.0 + EVENTS_PER_GRID * ((t_end - st.t) / self.grid).ceil();
         let mut events = 0.0;
         while st.t < t_end {
+            work.steps += 1;
+            within_step_budget(work, at_start, st.t).map_err(|e| self.too_fine(e))?;
             let (before, u_before) = (st.mode, st.u);
             match st.mode {
                 Mode::Stuck => self.stuck(st, t_end, held),
                 Mode::Sliding(s) => {
-                    self.slide(st, s, t_end, held)?;
+                    self.slide(st, s, t_end, held, (work, at_start))?;
                     // H = h s and u' keeps the sign s over the phase: the work is h |u1 - u0|.
                     st.dissipated += self.h * s * (st.u - u_before);
                 }
@@ -253,9 +260,26 @@ impl Switch {
         best
     }
 
+    /// The budget's message, with the grid that exhausted it.
+    fn too_fine(&self, budget: String) -> String {
+        format!(
+            "exact: sign changes of u' are looked for every {:.3e} s (the fastest of the forcing, the free oscillation and the decay m/c, over steps_per_period); {budget}",
+            self.grid
+        )
+    }
+
     /// A sliding phase in direction s: ends at t_end or where u' returns to 0.
-    fn slide(&self, st: &mut State, s: f64, t_end: f64, held: f64) -> Result<(), String> {
+    fn slide(
+        &self,
+        st: &mut State,
+        s: f64,
+        t_end: f64,
+        held: f64,
+        (work, at_start): (&mut Work, &Work),
+    ) -> Result<(), String> {
         while st.t < t_end {
+            work.steps += 1;
+            within_step_budget(work, at_start, st.t).map_err(|e| self.too_fine(e))?;
             let dt = self.grid.min(t_end - st.t);
             let y0 = self.augmented(st.t, st.u, st.v, s, held);
             let propagator = if dt == self.grid {

@@ -424,3 +424,27 @@ fn trimmed_scene_without_amplitude_and_work_matches_the_full_one() {
     let trimmed = Oscillator::with_scope(&values("linear"), 0.0, &motion_scope()).unwrap();
     assert!(!trimmed.tracks_amplitude);
 }
+
+/// Oracle: the step budget. With m = 1e-9 kg the velocity decays in m/c = 1e-9 s, and looking
+/// for its sign changes on that grid over a step of 2 pi/100 s would take about 1e9 grid steps:
+/// each step either completes or is refused within the budget, naming the grid.
+#[test]
+fn exact_with_a_grid_too_fine_for_the_step_is_refused_not_endless() {
+    let mut v = values("exact");
+    v.set(vr::M, 1e-9);
+    let mut scene = Oscillator::new(&v, 0.0).unwrap();
+    let step = TAU / 100.0;
+    let mut refused = None;
+    for _ in 0..20 {
+        if let Err(message) = scene.step_logged(step, 0.0, None) {
+            refused = Some(message);
+            break;
+        }
+    }
+    let message = refused.expect("a step of about 1e9 grid steps was taken");
+    assert!(
+        message.contains("exact: sign changes of u' are looked for every"),
+        "{message}"
+    );
+    assert!(message.contains("more than"), "{message}");
+}
