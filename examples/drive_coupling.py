@@ -17,7 +17,7 @@ t = 0 with everything at rest; the drive spring stretches until the body breaks 
 and then slides at the nut's speed with a ringing of the body on the spring (~200 Hz). No
 support vibration (va = 0), so every time scale is resolved by H.
 
-Run:    python3 examples/drive_coupling.py     (after `friction-fmu build`; needs fmpy)
+Run:    .venv/bin/python examples/drive_coupling.py   (after `friction-fmu build`; README: Python)
 Prints the coupling error against the monolithic reference (tests/reference/drive/) for a few H.
 """
 import csv

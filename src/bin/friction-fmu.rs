@@ -17,7 +17,7 @@ use friction_fmu::{package, report, scene_file, scenes};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: friction-fmu [build [SCENE.toml...]|run|report] [--out DIR]\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out) and the drive-coupled system into DIR/DriveFriction.ssp\n          or, given scene files, each into DIR/<name>.fmu with only the variables it keeps\n  run     build, pack scenes/*.toml into DIR/scenes, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.svg (default DIR: report), trimmed against full scenes: DIR/trimmed.md";
+const USAGE: &str = "usage: friction-fmu [build [SCENE.toml...]|run|report] [--out DIR] [--version]\n  (no command: run)\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out) and the drive-coupled system into DIR/DriveFriction.ssp\n          or, given scene files, each into DIR/<name>.fmu with only the variables it keeps\n  run     build, pack scenes/*.toml into DIR/scenes, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.svg (default DIR: fmu-out/report), trimmed against full scenes: DIR/trimmed.md, then the stability matrix";
 
 /// The FMU libraries of every model and platform whose toolchain is installed, built from the
 /// source tree this program was built from.
@@ -125,7 +125,16 @@ fn work_precision(out: &Path) -> Result<(), String> {
 fn stability() -> Result<(), String> {
     println!("\nStability matrix: every solver at the stiff and extreme cases\n");
     let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
-    let rows = report::stability::matrix(threads);
+    let progress = std::sync::Mutex::new(None);
+    let rows = report::stability::matrix(threads, &|row, total| {
+        let mut progress = progress.lock().unwrap_or_else(|e| e.into_inner());
+        progress
+            .get_or_insert_with(|| report::progress::Progress::new("stability matrix", total))
+            .tick(&format!("{} {} {}", row.model, row.solver, row.extreme));
+    });
+    if let Some(progress) = progress.into_inner().unwrap_or_else(|e| e.into_inner()) {
+        progress.finish();
+    }
     report::stability::print(&rows, &mut std::io::stdout()).map_err(|e| e.to_string())
 }
 
@@ -160,6 +169,10 @@ fn main() -> ExitCode {
                 println!("{USAGE}");
                 return ExitCode::SUCCESS;
             }
+            "-V" | "--version" => {
+                println!("friction-fmu {}", env!("CARGO_PKG_VERSION"));
+                return ExitCode::SUCCESS;
+            }
             file if command == "build" && !file.starts_with('-') => {
                 files.push(PathBuf::from(file));
             }
@@ -179,7 +192,8 @@ fn main() -> ExitCode {
         "build" => libraries().and_then(|libraries| {
             build(&out.unwrap_or_else(|| PathBuf::from("fmu-out")), &libraries)
         }),
-        "report" => work_precision(&out.unwrap_or_else(|| PathBuf::from("report"))),
+        // Not the tracked report/ (the published tables): a plain run leaves the checkout clean.
+        "report" => work_precision(&out.unwrap_or_else(|| PathBuf::from("fmu-out/report"))),
         _ => run(&out.unwrap_or_else(|| PathBuf::from("fmu-out"))),
     };
     match result {

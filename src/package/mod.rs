@@ -111,6 +111,11 @@ fn write_fmu(
     }
     zip.start_file("documentation/index.html", options)?;
     zip.write_all(contents.documentation.as_bytes())?;
+    // FMI 2.0, 2.3: the licenses of the FMU's code, where importers look for them.
+    for (name, text) in LICENSES {
+        zip.start_file(format!("documentation/licenses/{name}"), options)?;
+        zip.write_all(text.as_bytes())?;
+    }
     for (name, bytes) in contents.resources {
         zip.start_file(format!("resources/{name}"), options)?;
         zip.write_all(bytes)?;
@@ -118,6 +123,12 @@ fn write_fmu(
     zip.finish()?;
     Ok(path)
 }
+
+/// The project's licenses (Cargo.toml: MIT OR Apache-2.0), which every FMU carries.
+const LICENSES: [(&str, &str); 2] = [
+    ("LICENSE-MIT.txt", include_str!("../../LICENSE-MIT")),
+    ("LICENSE-APACHE.txt", include_str!("../../LICENSE-APACHE")),
+];
 
 /// Writes `<out_dir>/<model_identifier>.fmu` from the compiled `library` and returns its path.
 pub fn pack(model_identifier: &str, libraries: &[Library], out_dir: &Path) -> io::Result<PathBuf> {

@@ -231,8 +231,9 @@ pub fn cases() -> Vec<Case> {
     cases
 }
 
-/// Runs every case on `threads` threads; rows in the order of [`cases`].
-pub fn matrix(threads: usize) -> Vec<Row> {
+/// Runs every case on `threads` threads; rows in the order of [`cases`]. `done` hears of each
+/// row as it completes, with the number of cases (for progress).
+pub fn matrix(threads: usize, done: &(dyn Fn(&Row, usize) + Sync)) -> Vec<Row> {
     let cases = cases();
     let next = std::sync::atomic::AtomicUsize::new(0);
     let mut rows: Vec<Option<Row>> = vec![None; cases.len()];
@@ -243,6 +244,7 @@ pub fn matrix(threads: usize) -> Vec<Row> {
                 let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                 let Some(case) = cases.get(i) else { break };
                 let row = run(case);
+                done(&row, cases.len());
                 slots.lock().unwrap_or_else(|e| e.into_inner())[i] = Some(row);
             });
         }

@@ -365,10 +365,15 @@ pub fn markdown(rows: &[Row]) -> String {
 /// Runs every case, writes `<out>/trimmed.md` and returns its path and text.
 pub fn write(out: &Path) -> Result<(PathBuf, String), String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let cases = cases();
+    let mut progress = super::progress::Progress::new("trimmed against full scenes", cases.len());
     let mut rows = Vec::new();
-    for case in cases() {
+    for case in cases {
+        progress.draw(case.title);
         rows.push(compare(&case).map_err(|e| format!("{}: {e}", case.title))?);
+        progress.tick(case.title);
     }
+    progress.finish();
     let text = format!(
         "# Trimmed scenes against the full model\n\n{}",
         markdown(&rows)

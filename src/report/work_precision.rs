@@ -225,7 +225,7 @@ pub fn plot(case: &Case, study: &Study) -> Plot {
 pub fn write_all(cases: &[Case], out: &Path) -> Result<Vec<PathBuf>, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let total: usize = cases.iter().map(|c| c.settings.len() + 1).sum();
-    let mut progress = Progress::new(total);
+    let mut progress = Progress::new("error against run time", total);
     let mut written = Vec::new();
     for case in cases {
         let study = study(case, &mut progress)?;
