@@ -5,6 +5,7 @@ or to a Dask worker unchanged.
 """
 import itertools
 import json
+import math
 import pathlib
 import tomllib
 from dataclasses import dataclass, field
@@ -36,8 +37,6 @@ class Span:
     def parse(text):
         if text is None or isinstance(text, Span):
             return text
-        if isinstance(text, (int, float)):
-            return Span(float(text))
         number, slash, per = str(text).partition("/")
         try:
             value = float(number)
@@ -45,6 +44,8 @@ class Span:
             value = None
         if value is None or (slash and not per.strip()):
             raise ValueError(f"time {text!r}: expected seconds or N/PARAM, e.g. 0.05 or 150/f")
+        if not math.isfinite(value):
+            raise ValueError(f"time {text!r}: expected a finite number of seconds or periods")
         return Span(value, per.strip() or None)
 
     def at(self, values):
@@ -52,7 +53,9 @@ class Span:
             return self.value
         if self.per not in values:
             raise ValueError(f"time {self} refers to {self.per!r}, which is not set")
-        return self.value / float(values[self.per])
+        per = float(values[self.per])
+        # no time at PARAM = 0: a NaN, which check.plan refuses before the run
+        return self.value / per if per else math.nan
 
     def __str__(self):
         return f"{self.value:g}" + (f"/{self.per}" if self.per else "")
@@ -119,14 +122,58 @@ def load_file(path):
     """A grid file (TOML or JSON) with the keys grid, set, outputs, stop_time, step."""
     path = pathlib.Path(path)
     text = path.read_text()
-    data = tomllib.loads(text) if path.suffix == ".toml" else json.loads(text)
+    try:
+        data = tomllib.loads(text) if path.suffix == ".toml" else json.loads(text)
+    except ValueError as error:  # the parsers' messages do not name the file
+        raise ValueError(f"{path}: {error}") from None
+    if not isinstance(data, dict):
+        raise ValueError(f"{path}: expected a table with the keys grid, set, outputs, stop_time, "
+                         "step")
     unknown = set(data) - {"grid", "set", "outputs", "stop_time", "step"}
     if unknown:
         raise ValueError(f"{path}: unknown keys {sorted(unknown)}")
     return Plan(
-        grid={k: [parse_value(v) for v in vs] for k, vs in data.get("grid", {}).items()},
-        fixed={k: parse_value(v) for k, v in data.get("set", {}).items()},
-        outputs=[Output.parse(o) for o in data.get("outputs", [])],
+        grid={k: [parse_value(v) for v in vs] for k, vs in _grid(path, data).items()},
+        fixed={k: parse_value(v) for k, v in _fixed(path, data).items()},
+        outputs=[Output.parse(o) for o in _outputs(path, data)],
         stop_time=Span.parse(data.get("stop_time")),
         step=Span.parse(data.get("step")),
     )
+
+
+# The shapes a grid file's keys must have: anything else would be iterated or converted into
+# a different sweep than the one written (a string axis "1e-4" is four points "1", "e", ...).
+_SCALAR = (str, int, float, bool)
+
+
+def _grid(path, data):
+    grid = data.get("grid", {})
+    if not isinstance(grid, dict):
+        raise ValueError(f"{path}: grid: expected a table of axes, NAME = [V1, V2, ...]; got "
+                         f"{grid!r}")
+    for name, values in grid.items():
+        if not (isinstance(values, list) and values and all(isinstance(v, _SCALAR)
+                                                            for v in values)):
+            raise ValueError(f"{path}: grid.{name} = {values!r}: expected a non-empty list of "
+                             "values, e.g. [1e-4, 2e-4] (one value goes under set)")
+    return grid
+
+
+def _fixed(path, data):
+    fixed = data.get("set", {})
+    if not isinstance(fixed, dict):
+        raise ValueError(f"{path}: set: expected a table NAME = VALUE; got {fixed!r}")
+    for name, value in fixed.items():
+        if not isinstance(value, _SCALAR):
+            raise ValueError(f"{path}: set.{name} = {value!r}: expected one value (a list is a "
+                             "grid axis)")
+    return fixed
+
+
+def _outputs(path, data):
+    outputs = data.get("outputs", [])
+    if not (isinstance(outputs, list) and all(isinstance(o, str) for o in outputs)):
+        raise ValueError(f"{path}: outputs = {outputs!r}: expected a list of NAME or "
+                         "NAME:mean_last=TIME strings")
+    return outputs
+

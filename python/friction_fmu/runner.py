@@ -3,8 +3,9 @@
 The FMU travels as an `FmuSource`: by path (the worker reads the file itself, which needs a
 filesystem shared with the client) or as the bytes of the .fmu (works anywhere). A worker
 extracts each FMU once, keeps its shared library loaded, and instantiates it once per point.
-A refusal by the FMU (error, discard, fatal) becomes the row's status and message: a failed
-point never raises out of `run_point`.
+A refusal by the FMU (error, discard, fatal) becomes the row's status and message, and so does
+an output without a finite summary (status error): a failed point never raises out of
+`run_point`, and a row with status ok holds only finite numbers.
 """
 import ctypes
 import hashlib
@@ -67,6 +68,7 @@ class _Loaded:
         self.unzipdir = fmpy.extract(archive, unzipdir=os.path.join(self.directory, "x"))
         self.md = fmpy.read_model_description(self.unzipdir)
         self.variables = {v.name: v for v in self.md.modelVariables}
+        self.starts = start_values(self.md)
         identifier = self.md.coSimulation.modelIdentifier
         # FMU2Slave.freeInstance unloads the library; this handle keeps it resident between
         # points so it is not reloaded for each one.
@@ -142,8 +144,15 @@ def _set(fmu, fmu_vars, name, value):
         raise ValueError(f"{name}: variables of type {var.type} cannot be set by a sweep")
 
 
+def start_values(md):
+    """The FMU's start value of every variable that has one, by name."""
+    return {v.name: v.start for v in md.modelVariables if v.start is not None}
+
+
 def experiment_times(md, plan, values):
-    """(start, stop, step) of one point: the plan's, else the FMU's DefaultExperiment."""
+    """(start, stop, step) of one point: the plan's, else the FMU's DefaultExperiment. `values`
+    are what an N/PARAM time divides by: the point's values over the FMU's start values (so
+    `50/f` with no f in the plan is 50 periods of the FMU's default f)."""
     experiment = md.defaultExperiment
     stop = plan.stop_time.at(values) if plan.stop_time else float(experiment.stopTime)
     step = plan.step.at(values) if plan.step else float(experiment.stepSize)
@@ -153,7 +162,7 @@ def experiment_times(md, plan, values):
 def _simulate(fmu, lib, plan, values, outputs):
     """Steps from start to stop like fmpy.simulate_fmu does (communication points
     start + n*step, the last one clipped to stop); returns times and sampled outputs."""
-    start, stop, step = experiment_times(lib.md, plan, values)
+    start, stop, step = experiment_times(lib.md, plan, {**lib.starts, **values})
     refs = [lib.variables[o.variable].valueReference for o in outputs]
     fmu.setupExperiment(startTime=start, stopTime=stop)
     for name, value in values.items():
@@ -177,17 +186,30 @@ def _isclose(a, b):
     return math.isclose(a, b)  # the comparison fmpy.simulate_fmu makes of communication points
 
 
+class NoSummary(Exception):
+    """An output without a finite summary (a window holding no sample, a NaN sample): the
+    point failed although the FMU did not."""
+
+
 def collect(outputs, values, times, samples):
-    """One number per output: the last sample, or the mean of the samples in the window."""
+    """One finite number per output: the last sample, or the mean of the samples in the
+    window; raises NoSummary for an output that has none."""
     stop = times[-1]
     result = {}
     for k, output in enumerate(outputs):
         if output.window is None:
-            result[output.column] = samples[-1][k]
-            continue
-        since = stop - output.window.at(values)
-        chosen = [s[k] for t, s in zip(times, samples) if t > since and not _isclose(t, since)]
-        result[output.column] = sum(chosen) / len(chosen) if chosen else float("nan")
+            value = samples[-1][k]
+        else:
+            since = stop - output.window.at(values)
+            chosen = [s[k] for t, s in zip(times, samples)
+                      if t > since and not _isclose(t, since)]
+            if not chosen:
+                raise NoSummary(f"{output.column}: no communication point in the last "
+                                f"{stop - since:g} s before t = {stop:g} s")
+            value = sum(chosen) / len(chosen)
+        if not math.isfinite(value):
+            raise NoSummary(f"{output.column} = {value} at t = {stop:g} s: not a finite number")
+        result[output.column] = value
     return result
 
 
@@ -211,8 +233,10 @@ def run_point(source, plan, point):
                         instanceName=f"point{point.index}")
         fmu.instantiate(callbacks=_callbacks(environment))
         times, samples = _simulate(fmu, lib, plan, values, plan.outputs)
-        row.update(collect(plan.outputs, values, times, samples))
+        row.update(collect(plan.outputs, {**lib.starts, **values}, times, samples))
         row["status"], row["message"] = "ok", ""
+    except NoSummary as error:  # the reason is ours: the FMU's warnings would not explain it
+        row["status"], row["message"] = "error", str(error)
     except fmpy.fmi1.FMICallException as error:
         row["status"] = STATUS[error.status] if 0 <= error.status < len(STATUS) else "error"
         row["message"] = _explain(messages, error)

@@ -4,30 +4,36 @@
         --grid vd=1e-4,5e-4,2e-3 --grid va=0,1e-3,2e-3 --grid f=1e3,3e3 \\
         --set initial=sliding --output FFx_mean --stop-time 150/f --step 1/f
     python -m friction_fmu.sweep --preset fig8            # the paper's Fig. 8 grid
+    python -m friction_fmu.sweep ... --scheduler local:4  # on a Dask LocalCluster of 4 workers
     python -m friction_fmu.sweep ... --scheduler tcp://host:8786   # on a Dask cluster
 
 Points run on the local cores (a process pool, one worker per core) unless a Dask scheduler is
 given; both executors get the same task, `runner.run_point`, through the same
 concurrent.futures interface. Writes PREFIX.csv (one row per point), PREFIX.svg (heat map) and
-PREFIX.json (what was run).
+PREFIX.json (what was run). Exit status: 0 when every point ran, 1 when any failed, 2 when the
+arguments were refused (before any point ran).
 """
 import argparse
 import concurrent.futures as cf
 import contextlib
 import csv
 import json
+import math
 import os
 import pathlib
 import sys
+import tempfile
 import time
-
-import fmpy
+from dataclasses import dataclass
 
 from . import check, heatmap
 from .grid import Output, Plan, Span, load_file, parse_assignment
 from .presets import PRESETS
 from .progress import Progress
 from .runner import FmuSource, run_point
+
+CONNECT_TIMEOUT = 10.0  # seconds; Dask's own default, 30 s, is long to wait for a typo
+SUFFIXES = (".csv", ".svg", ".json")
 
 
 @contextlib.contextmanager
@@ -36,32 +42,81 @@ def local_executor(workers):
         yield executor, lambda source: source
 
 
-@contextlib.contextmanager
-def dask_executor(scheduler):
-    """A Dask client's concurrent.futures executor. `scheduler` is an address
-    (tcp://host:port) or a cluster object (e.g. a LocalCluster). The FMU is scattered to every
-    worker once, so tasks carry only a reference to it."""
-    from distributed import Client
+def local_cluster_size(scheduler):
+    """N of `local[:N]` (default: the number of CPUs); None for any other scheduler."""
+    if not isinstance(scheduler, str) or scheduler.partition(":")[0] != "local":
+        return None
+    _, colon, count = scheduler.partition(":")
+    if not colon:
+        return os.cpu_count()
+    if not count.isdigit() or int(count) < 1:
+        raise ValueError(f"--scheduler {scheduler}: expected local or local:N, N >= 1 workers")
+    return int(count)
 
-    with Client(scheduler) as client:
+
+def executor_label(scheduler, workers):
+    size = local_cluster_size(scheduler)
+    if size is not None:
+        return f"a Dask LocalCluster of {size} worker{'s' * (size != 1)}"
+    if scheduler is not None:
+        return f"dask {scheduler}"
+    return f"local, {workers} process{'es' * (workers != 1)}"
+
+
+@contextlib.contextmanager
+def dask_executor(scheduler, connect_timeout=CONNECT_TIMEOUT):
+    """A Dask client's concurrent.futures executor. `scheduler` is an address
+    (tcp://host:port), `local[:N]` (a LocalCluster of N worker processes, started here and
+    closed with the executor) or a cluster object. The FMU is scattered to every worker once,
+    so tasks carry only a reference to it."""
+    from distributed import LocalCluster
+
+    size = local_cluster_size(scheduler)
+    with contextlib.ExitStack() as stack:
+        if size is not None:
+            # one thread a worker, as in the local pool: a point holds its core to the end.
+            # The workers are spawned with this process's sys.path, so they import this
+            # package from where it does, with no PYTHONPATH set.
+            scheduler = stack.enter_context(LocalCluster(
+                n_workers=size, threads_per_worker=1, processes=True, dashboard_address=None))
+        client = stack.enter_context(_client(scheduler, connect_timeout))
+
         def ship(source):
             return client.scatter(source, broadcast=True)
 
         yield client.get_executor(pure=False), ship
 
 
-def run_sweep(fmu, plan, scheduler=None, workers=None, ship=None, progress=True):
+def _client(scheduler, timeout):
+    from distributed import Client
+
+    try:
+        return Client(scheduler, timeout=timeout)
+    except OSError:  # Dask retries until the timeout, then says only that it timed out
+        raise ValueError(f"--scheduler {scheduler}: no Dask scheduler answered within "
+                         f"{timeout:g} s (--connect-timeout)") from None
+    except ValueError as error:  # an address Dask cannot parse
+        raise ValueError(f"--scheduler {scheduler}: {error}") from None
+
+
+def run_sweep(fmu, plan, scheduler=None, workers=None, ship=None, progress=True,
+              connect_timeout=CONNECT_TIMEOUT):
     """Runs every point of `plan`; returns the rows in grid order and a summary of the run.
+    Raises ValueError before any point runs when the plan cannot run on the FMU or the Dask
+    scheduler does not answer within `connect_timeout` seconds.
 
     `ship` is how the FMU reaches the workers: "path" (a filesystem they share with this
     process; the default on local cores) or "bytes" (the .fmu's content; the default on Dask,
     safe on any cluster)."""
-    check.plan(fmpy.read_model_description(fmu), plan)
+    md = check.model_description(fmu)
+    check.plan(md, plan)
+    check.times(md, plan)
     ship = ship or ("bytes" if scheduler is not None else "path")
     source = FmuSource.by_bytes(fmu) if ship == "bytes" else FmuSource.by_path(fmu)
     points = plan.points()
     workers = workers or os.cpu_count()
-    executor_cm = dask_executor(scheduler) if scheduler is not None else local_executor(workers)
+    executor_cm = (dask_executor(scheduler, connect_timeout) if scheduler is not None
+                   else local_executor(workers))
     began = time.perf_counter()
     rows = []
     with executor_cm as (executor, place):
@@ -78,7 +133,7 @@ def run_sweep(fmu, plan, scheduler=None, workers=None, ship=None, progress=True)
     rows.sort(key=lambda r: r["point"])
     summary = {
         "fmu": os.path.abspath(fmu),
-        "executor": f"dask {scheduler}" if scheduler is not None else f"local, {workers} processes",
+        "executor": executor_label(scheduler, workers),
         "ship": ship,
         "points": len(points),
         "failed": sum(r["status"] != "ok" for r in rows),
@@ -92,6 +147,34 @@ def columns(plan):
             "wall_time_s"]
 
 
+def out_paths(out, model):
+    """{suffix: path} of the three files of `--out PREFIX`: PREFIX.csv, .svg and .json. A
+    directory (one that exists, or any path ending in /) holds MODEL-sweep.*; a PREFIX ending in
+    one of the three suffixes loses it, and any other dot is kept (run.f2.5 -> run.f2.5.csv)."""
+    prefix = pathlib.Path(out)
+    if out.endswith(("/", os.sep)) or prefix.is_dir():
+        prefix = prefix / f"{model}-sweep"
+    elif prefix.suffix in SUFFIXES:
+        prefix = prefix.with_suffix("")
+    return {suffix: prefix.with_name(prefix.name + suffix) for suffix in SUFFIXES}
+
+
+def writable(paths, out):
+    """Creates the files' directory and writes a scratch file in it, so that a sweep is
+    refused up front rather than run to the end and then lost."""
+    directory = paths[".csv"].parent
+    if directory.exists() and not directory.is_dir():
+        raise ValueError(f"--out {out}: {directory} is a file, not a directory")
+    try:
+        directory.mkdir(parents=True, exist_ok=True)
+        tempfile.TemporaryFile(dir=directory).close()
+    except OSError as error:
+        raise ValueError(f"--out {out}: cannot write in {directory} ({error.strerror})") from None
+    for path in paths.values():
+        if path.is_dir() or (path.exists() and not os.access(path, os.W_OK)):
+            raise ValueError(f"--out {out}: cannot write {path}")
+
+
 def write_csv(path, plan, rows):
     """Floats are written with repr, so the file holds every bit of each number."""
     with open(path, "w", newline="") as handle:
@@ -101,9 +184,8 @@ def write_csv(path, plan, rows):
             writer.writerow({k: repr(v) if isinstance(v, float) else v for k, v in row.items()})
 
 
-def units_of(fmu):
+def units_of(md):
     """Unit of every variable that has one, from the modelDescription."""
-    md = fmpy.read_model_description(fmu)
     units = {}
     for var in md.modelVariables:
         unit = getattr(var, "unit", None) or getattr(var.declaredType, "unit", None)
@@ -112,17 +194,40 @@ def units_of(fmu):
     return units
 
 
-def heatmap_units(fmu, plan):
-    units = units_of(fmu)
+def heatmap_units(md, plan):
+    units = units_of(md)
     for output in plan.outputs:
         if output.variable in units:
             units[output.column] = units[output.variable]
     return units
 
 
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        # one line and exit status 2, as every other refusal (main prints it); the usage is
+        # one --help away
+        raise ValueError(f"{message} (see --help)")
+
+
+def _count(text):
+    if not text.strip().isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected a whole number >= 1")
+    return int(text)
+
+
+def _seconds(text):
+    try:
+        seconds = float(text)
+    except ValueError:
+        seconds = math.nan
+    if not (math.isfinite(seconds) and seconds > 0):
+        raise argparse.ArgumentTypeError(f"{text!r}: expected a number of seconds > 0")
+    return seconds
+
+
 def parse_args(argv):
-    p = argparse.ArgumentParser(prog="python -m friction_fmu.sweep", description=__doc__,
-                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = _Parser(prog="python -m friction_fmu.sweep", description=__doc__,
+                formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("fmu", nargs="?", help="the .fmu (a preset brings its own default)")
     p.add_argument("--preset", choices=sorted(PRESETS), help="a stored sweep, e.g. fig8")
     p.add_argument("--grid", action="append", default=[], metavar="NAME=V1,V2,...",
@@ -136,17 +241,23 @@ def parse_args(argv):
     p.add_argument("--stop-time", help="seconds or N/PARAM (default: DefaultExperiment)")
     p.add_argument("--step", help="communication step, seconds or N/PARAM (default: "
                                   "DefaultExperiment)")
-    p.add_argument("--workers", type=int, help="local processes (default: os.cpu_count())")
-    p.add_argument("--scheduler", help="Dask scheduler address, e.g. tcp://host:8786")
+    p.add_argument("--workers", type=_count, help="local processes (default: os.cpu_count())")
+    p.add_argument("--scheduler", help="Dask: local[:N] starts a LocalCluster of N workers "
+                                       "(default: os.cpu_count()), or a scheduler address, "
+                                       "e.g. tcp://host:8786")
+    p.add_argument("--connect-timeout", type=_seconds, default=CONNECT_TIMEOUT,
+                   metavar="SECONDS", help="how long to wait for the Dask scheduler "
+                                           f"(default {CONNECT_TIMEOUT:g})")
     p.add_argument("--ship", choices=["bytes", "path"],
                    help="send the FMU as bytes or by path (default: path locally, bytes on Dask)")
-    p.add_argument("--out", help="output prefix (default fmu-out/sweeps/sweep)")
+    p.add_argument("--out", help="output prefix, or a directory (DIR/ writes "
+                                 "DIR/MODEL-sweep.*); default fmu-out/sweeps/sweep")
     p.add_argument("--x", help="heat map x axis (default: first grid axis)")
     p.add_argument("--y", help="heat map y axis (default: second grid axis)")
     p.add_argument("--color", help="heat map column (default: first output)")
     p.add_argument("--fix", action="append", default=[], metavar="NAME=VALUE",
                    help="pin another grid axis in the heat map instead of faceting it")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--quiet", action="store_true", help="no start line or progress")
     return p.parse_args(argv)
 
 
@@ -166,16 +277,16 @@ def plan_from_args(args):
     for text in args.set:
         name, values = parse_assignment(text)
         if len(values) != 1:
-            raise SystemExit(f"--set {text}: one value expected (a list is a --grid axis)")
+            raise ValueError(f"--set {text}: one value expected (a list is a --grid axis)")
         plan.fixed[name] = values[0]
     if args.output:
         plan.outputs = [Output.parse(o) for o in args.output]
     plan.stop_time = Span.parse(args.stop_time) or plan.stop_time
     plan.step = Span.parse(args.step) or plan.step
     if not plan.grid:
-        raise SystemExit("nothing to sweep: give --grid NAME=V1,V2,... or --grid-file")
+        raise ValueError("nothing to sweep: give --grid NAME=V1,V2,... or --grid-file")
     if not plan.outputs:
-        raise SystemExit("nothing to collect: give --output NAME")
+        raise ValueError("nothing to collect: give --output NAME")
     return plan, preset
 
 
@@ -196,39 +307,81 @@ def view_from_args(args, preset, plan):
     return x, y, column, fixed
 
 
-def main(argv=None):
-    args = parse_args(sys.argv[1:] if argv is None else argv)
-    # every refusal before the sweep starts is one line and a non-zero exit, no traceback
-    try:
-        plan, preset = plan_from_args(args)
-        fmu = args.fmu or preset.get("fmu")
-        if fmu is None:
-            raise SystemExit("give the FMU to sweep")
-        x, y, column, fixed = view_from_args(args, preset, plan)
-        check.plan(fmpy.read_model_description(fmu), plan)
-        check.view(plan, x, y, column, fixed)
-    except (ValueError, OSError) as error:  # OSError: a missing FMU or grid file
-        raise SystemExit(f"error: {error}") from None
-    prefix = pathlib.Path(args.out or preset.get("out", "fmu-out/sweeps/sweep"))
-    prefix.parent.mkdir(parents=True, exist_ok=True)
+@dataclass
+class Command:
+    """A checked command line: what to run, on what, and where its files go."""
 
-    rows, summary = run_sweep(fmu, plan, scheduler=args.scheduler, workers=args.workers,
-                              ship=args.ship, progress=not args.quiet)
-    write_csv(prefix.with_suffix(".csv"), plan, rows)
-    svg = heatmap.render(rows, plan.grid, x, y, column, heatmap_units(fmu, plan), fixed,
-                         title=preset.get("title"))
-    prefix.with_suffix(".svg").write_text(svg)
+    args: argparse.Namespace
+    plan: Plan
+    preset: dict
+    fmu: str
+    md: object  # fmpy's ModelDescription
+    view: tuple  # heat map x, y, color column, pinned axes
+    workers: int
+    paths: dict
+
+
+def prepare(argv):
+    """The command line, checked from its syntax to the output directory; raises ValueError
+    (or OSError, for a missing file) for the first thing wrong."""
+    args = parse_args(argv)
+    plan, preset = plan_from_args(args)
+    fmu = args.fmu or preset.get("fmu")
+    if fmu is None:
+        raise ValueError("give the FMU to sweep")
+    md = check.model_description(fmu)
+    view = view_from_args(args, preset, plan)
+    check.plan(md, plan)
+    check.ranges(md, plan)  # before times: an N/PARAM by a PARAM out of range means nothing
+    check.times(md, plan)
+    check.view(plan, *view)
+    if args.workers is not None and args.scheduler is not None:
+        raise ValueError("--workers sizes the local process pool: with --scheduler, give "
+                         "local:N or size the cluster")
+    local_cluster_size(args.scheduler)  # refuses a malformed local:N
+    out = args.out or preset.get("out", "fmu-out/sweeps/sweep")
+    paths = out_paths(out, pathlib.Path(fmu).stem)
+    writable(paths, out)
+    return Command(args, plan, preset, fmu, md, view, args.workers or os.cpu_count(), paths)
+
+
+def write_results(command, rows, summary):
+    plan, paths = command.plan, command.paths
+    write_csv(paths[".csv"], plan, rows)
+    svg = heatmap.render(rows, plan.grid, *command.view[:3], heatmap_units(command.md, plan),
+                         command.view[3], title=command.preset.get("title"))
+    paths[".svg"].write_text(svg)
     summary.update(grid=plan.grid, fixed=plan.fixed, outputs=[o.column for o in plan.outputs],
                    stop_time=str(plan.stop_time or "DefaultExperiment"),
                    step=str(plan.step or "DefaultExperiment"))
-    prefix.with_suffix(".json").write_text(json.dumps(summary, indent=2) + "\n")
+    paths[".json"].write_text(json.dumps(summary, indent=2) + "\n")
     run_times = [r["wall_time_s"] for r in rows]
     print(f"{summary['points']} points ({summary['failed']} failed) in "
           f"{summary['wall_time_s']:.2f} s on {summary['executor']}, FMU shipped by "
           f"{summary['ship']}; one run {min(run_times):.3f}-{max(run_times):.3f} s")
-    for suffix in (".csv", ".svg", ".json"):
-        print(f"wrote {prefix.with_suffix(suffix)}")
-    return 1 if summary["failed"] == summary["points"] else 0
+    for path in paths.values():
+        print(f"wrote {path}")
+
+
+def main(argv=None):
+    """The command; returns its exit status: 0 every point ran, 1 some failed, 2 refused."""
+    # every refusal is one line on stderr and exit status 2, before any point runs
+    try:
+        command = prepare(sys.argv[1:] if argv is None else argv)
+        args = command.args
+        if not args.quiet:  # before the pool or the cluster starts, which takes seconds
+            print(f"sweeping {command.md.modelName}: {len(command.plan.points())} points on "
+                  f"{executor_label(args.scheduler, command.workers)}, writing "
+                  f"{command.paths['.csv']} (and .svg, .json)", file=sys.stderr, flush=True)
+        # connects to the Dask scheduler before any point runs: no answer is a refusal too
+        rows, summary = run_sweep(command.fmu, command.plan, scheduler=args.scheduler,
+                                  workers=command.workers, ship=args.ship,
+                                  progress=not args.quiet, connect_timeout=args.connect_timeout)
+    except (ValueError, OSError) as error:  # OSError: a missing FMU or grid file
+        print(f"error: {error}", file=sys.stderr)
+        return 2
+    write_results(command, rows, summary)
+    return 1 if summary["failed"] else 0
 
 
 if __name__ == "__main__":

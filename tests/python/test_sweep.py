@@ -1,17 +1,25 @@
 """Parameter sweeps (python/friction_fmu): each row equals a direct fmpy run of its point, the
 sweep's means agree with the scipy Radau reference, the local process pool and a Dask cluster
-write the same CSV, a refused point is recorded with the FMU's message, a misspelt plan is
-refused before any point runs, the heat map has one cell per point, and the workers leave no
-extracted FMU behind.
+write the same CSV, a refused point is recorded with the FMU's message, an output without a
+finite summary fails its point, the heat map has one cell per point, and the workers leave no
+extracted FMU behind. On the command line: every bad argument (plan, FMU file, grid file,
+--out, scheduler) is refused in one line with exit status 2 before any point runs, a failed
+point makes the exit status 1, `local[:N]` starts its own Dask cluster, N/PARAM times use
+PARAM's start value when the plan does not set it, and a start line comes before any progress.
 
 Runs are short (30 periods at 3 kHz) and grids tiny, so the file takes a few seconds, most of
-it starting the Dask cluster.
+it starting the Dask clusters.
 """
 import csv
+import json
 import math
+import pathlib
+import socket
 import subprocess
 import sys
+import time
 import xml.etree.ElementTree as ET
+import zipfile
 
 import fmpy
 import pytest
@@ -43,6 +51,14 @@ def plan():
 @pytest.fixture(scope="module")
 def local():
     return run_sweep(fmu_path(MODEL), plan(), workers=2, progress=False)[0]
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    import distributed  # in tests/python/requirements.txt: missing is a failure, not a skip
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as running:
+        yield running
 
 
 def test_each_row_equals_a_direct_fmpy_run(local):
@@ -94,11 +110,8 @@ def _rows_without_wall_time(path):
     return sorted(rows, key=lambda r: int(r["point"]))
 
 
-def test_local_processes_and_dask_cluster_write_the_same_csv(local, tmp_path):
-    import distributed  # in tests/python/requirements.txt: missing is a failure, not a skip
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster:
-        on_dask, summary = run_sweep(fmu_path(MODEL), plan(), scheduler=cluster, progress=False)
+def test_local_processes_and_dask_cluster_write_the_same_csv(local, cluster, tmp_path):
+    on_dask, summary = run_sweep(fmu_path(MODEL), plan(), scheduler=cluster, progress=False)
     assert summary["ship"] == "bytes"
     write_csv(tmp_path / "local.csv", plan(), local)
     write_csv(tmp_path / "dask.csv", plan(), on_dask)
@@ -212,14 +225,26 @@ SMALL_PLAN = ["--grid", "vd=1e-4,2e-4", "--set", "f=3000", "--output", "FFx_mean
 SMALL = [*SMALL_PLAN, "--workers", "1"]
 
 
+def _refusal(capsys, argv, out):
+    """The one line `main` refused `argv` with, after checking it refused before any point ran:
+    exit status 2, nothing on stdout, no CSV."""
+    code = main(argv)
+    captured = capsys.readouterr()
+    assert code == 2, captured
+    assert captured.out == ""
+    assert captured.err.startswith("error: ") and captured.err.count("\n") == 1
+    assert not out.with_suffix(".csv").is_file()  # refused up front: nothing ran
+    return captured.err.removesuffix("\n")
+
+
 @pytest.mark.parametrize("extra, said", [
     (["--set", "initial=slidng"], ["initial = 'slidng': expected one of"]),
     (["--grid", "initial=sliding,7"], ["initial = 7.0: expected one of"]),
     (["--grid", "va=1e-4,abc"], ["va = 'abc': expected a number"]),
     (["--set", "steps_per_period=2.5"], ["steps_per_period = 2.5: expected a whole number"]),
     (["--stop-time", "3/ff"], ["stop time 3/ff: 'ff' is not a variable of the FMU"]),
-    (["--step", "1/va"], ["step 1/va: 'va' is not set at every point"]),
-    (["--output", "FFx:mean_last=1/g"], ["output FFx:mean_last=1/g: 'g' is not set"]),
+    (["--step", "1/FF"], ["step 1/FF: FF is an output; N/PARAM divides by a parameter"]),
+    (["--output", "FFx:mean_last=1/g2"], ["output FFx:mean_last=1/g2: 'g2' is not a variable"]),
     (["--stop-time", "abc"], ["time 'abc': expected seconds or N/PARAM"]),
     (["--output", "FFxx"], ["the FMU has no variable 'FFxx'"]),
     (["--y", "vdx"], ["--y vdx: not a grid axis (axes: vd)"]),
@@ -227,28 +252,250 @@ SMALL = [*SMALL_PLAN, "--workers", "1"]
     (["--color", "Fd"], ["--color Fd: not an output column (FFx_mean)"]),
     (["--fix", "f=3000"], ["--fix f: not a grid axis (axes: vd)"]),
     (["--grid", "f=2e3,3e3", "--fix", "f=1e3"], ["--fix f=1000.0: not a value of that axis"]),
+    # a count of workers is a whole number >= 1
+    (["--workers", "-1"], ["argument --workers: '-1': expected a whole number >= 1"]),
+    (["--workers", "0"], ["argument --workers: '0': expected a whole number >= 1"]),
+    (["--workerz", "2"], ["unrecognized arguments: --workerz 2 (see --help)"]),
+    # times are finite, and a point is at most 1e8 communication steps
+    (["--stop-time", "inf"], ["time 'inf': expected a finite number"]),
+    (["--stop-time", "nan/f"], ["time 'nan/f': expected a finite number"]),
+    (["--step", "nan"], ["time 'nan': expected a finite number"]),
+    (["--output", "FFx:mean_last=nan"], ["time 'nan': expected a finite number"]),
+    (["--stop-time", "1e300"], ["stop time 1e+300 s at a step of 0.000333333 s at f = 3000.0 "
+                                "is 3e+303 communication steps a point: at most 1e+08"]),
+    (["--step", "1e-300"], ["stop time 0.001 s at a step of 1e-300 s at f = 3000.0 is 1e+297 "
+                            "communication steps a point: at most 1e+08 are allowed"]),
+    (["--step=-1/f"], ["step -1/f is -0.0003333333333333333 s at f = 3000.0: expected a finite "
+                       "step > 0"]),
+    (["--stop-time", "0"], ["stop time 0 is 0.0 s: expected a finite time after the start, 0 s"]),
+    # values are finite numbers of a parameter or input, within the declared range
+    (["--grid", "vd=nan"], ["vd = nan: expected a finite number"]),
+    (["--set", "va=-inf"], ["va = -inf: expected a finite number"]),
+    (["--set", "FF=1"], ["FF is an output; --grid and --set take parameters and inputs: "
+                         "slip_law, solver,", ", f, vd_in"]),
+    (["--grid", "va=1e-3,-1e-3"], ["va = -0.001 is outside the declared range: expected "
+                                   "0 <= va (m/s)"]),
+    (["--set", "tolerance=0.1"], ["tolerance = 0.1 is outside the declared range: expected "
+                                  "1e-14 <= tolerance <= 0.01"]),
+    (["--set", "f=0"], ["f = 0.0 is outside the declared range: expected "
+                        "2.2250738585072014e-308 <= f (Hz)"]),
+    (["--set", "steps_per_period=0"], ["expected 1 <= steps_per_period <= 100000000"]),
 ])
-def test_misspelt_plan_is_refused_before_any_point_runs(tmp_path, extra, said):
+def test_misspelt_plan_is_refused_before_any_point_runs(tmp_path, capsys, extra, said):
     out = tmp_path / "refused"
-    with pytest.raises(SystemExit) as refusal:
-        main([fmu_path(MODEL), *SMALL, "--out", str(out), *extra])
-    message = refusal.value.code
-    assert isinstance(message, str) and message.startswith("error: ") and "\n" not in message
+    message = _refusal(capsys, [fmu_path(MODEL), *SMALL, "--out", str(out), *extra], out)
     for phrase in said:
         assert phrase in message
-    if "initial" in message:  # the items come from the modelDescription's type definition
+    if "initial =" in message:  # the items come from the modelDescription's type definition
         items = _item_names("initial")
         assert len(items) >= 2 and all(f"{name} (" in message for name in items)
-    assert not out.with_suffix(".csv").exists()  # refused up front: nothing ran
 
 
-def test_refusal_is_one_line_and_a_nonzero_exit():
+def test_refusal_is_one_line_and_exit_status_2():
     env = {"PYTHONPATH": str(ROOT / "python"), "PATH": "/usr/bin:/bin"}
     done = subprocess.run([sys.executable, "-m", "friction_fmu.sweep", fmu_path(MODEL), *SMALL,
                            "--y", "vdx"], capture_output=True, text=True, env=env, timeout=60)
-    assert done.returncode == 1
+    assert done.returncode == 2
     assert done.stderr == "error: --y vdx: not a grid axis (axes: vd)\n"
     assert done.stdout == ""
+
+
+def test_a_file_that_is_not_an_fmu_is_refused(tmp_path, capsys):
+    text = tmp_path / "text.fmu"
+    text.write_text("not a zip\n")
+    empty = tmp_path / "empty.fmu"
+    with zipfile.ZipFile(empty, "w") as archive:
+        archive.writestr("binaries/readme.txt", "no model description\n")
+    out = tmp_path / "refused"
+    for fmu, said in [(text, f"{text}: not an FMU (not a zip archive)"),
+                      (empty, f"{empty}: not an FMU (no modelDescription.xml in the archive)"),
+                      (tmp_path / "missing.fmu", "No such file or directory")]:
+        assert said in _refusal(capsys, [str(fmu), *SMALL, "--out", str(out)], out)
+
+
+BAD_GRID_FILES = [
+    ("list.toml", 'grid = [1e-4, 2e-4]\n', "grid: expected a table of axes"),
+    ("scalar.toml", '[grid]\nvd = 1e-4\n', "grid.vd = 0.0001: expected a non-empty list"),
+    ("string.json", '{"grid": {"vd": "1e-4,2e-4"}}', "grid.vd = '1e-4,2e-4': expected a non-empty"),
+    ("empty.toml", '[grid]\nvd = []\n', "grid.vd = []: expected a non-empty list"),
+    ("set.toml", '[grid]\nvd = [1e-4]\n[set]\nf = [1e3, 2e3]\n',
+     "set.f = [1000.0, 2000.0]: expected one value (a list is a grid axis)"),
+    ("outputs.toml", 'outputs = "FFx_mean"\n[grid]\nvd = [1e-4]\n',
+     "outputs = 'FFx_mean': expected a list"),
+    ("top.json", '[1, 2]', "expected a table with the keys grid"),
+    ("syntax.json", '{"grid": }', "Expecting value: line 1 column 10"),
+]
+
+
+@pytest.mark.parametrize("name, text, said", BAD_GRID_FILES,
+                         ids=[name for name, _, _ in BAD_GRID_FILES])
+def test_grid_file_of_the_wrong_shape_is_refused(tmp_path, capsys, name, text, said):
+    grid_file = tmp_path / name
+    grid_file.write_text(text)
+    out = tmp_path / "refused"
+    message = _refusal(capsys, [fmu_path(MODEL), "--grid-file", str(grid_file), "--output",
+                                "FFx_mean", "--stop-time", "1e-3", "--workers", "1", "--quiet",
+                                "--out", str(out)], out)
+    assert f"{grid_file}: {said}" in message
+
+
+def test_out_that_cannot_be_written_is_refused(tmp_path, capsys):
+    afile = tmp_path / "afile"
+    afile.write_text("")
+    (tmp_path / "taken.csv").mkdir()
+    for out, said in [(afile / "sweep", f"{afile} is a file, not a directory"),
+                      (afile / "deeper" / "sweep", f"cannot write in {afile / 'deeper'} (Not a "
+                                                   "directory)"),
+                      (pathlib.Path("/proc/sweep"), "cannot write in /proc"),
+                      (tmp_path / "taken", f"cannot write {tmp_path / 'taken.csv'}")]:
+        message = _refusal(capsys, [fmu_path(MODEL), *SMALL, "--out", str(out)], out)
+        assert message.startswith(f"error: --out {out}: {said}")
+
+
+def _written(tmp_path):
+    return sorted(str(p.relative_to(tmp_path)) for p in tmp_path.rglob("*") if p.is_file())
+
+
+@pytest.mark.parametrize("out, files", [
+    ("results/", ["results/TransverseFriction-sweep.csv", "results/TransverseFriction-sweep.json",
+                  "results/TransverseFriction-sweep.svg"]),
+    ("run.f2.5", ["run.f2.5.csv", "run.f2.5.json", "run.f2.5.svg"]),
+    ("run.csv", ["run.csv", "run.json", "run.svg"]),
+])
+def test_out_prefix_directory_and_dots(tmp_path, out, files):
+    """A directory (ending in /, or existing) holds MODEL-sweep.*; a prefix keeps its dots."""
+    assert main([fmu_path(MODEL), *SMALL, "--out", f"{tmp_path}/{out}"]) == 0
+    assert _written(tmp_path) == files
+    (tmp_path / "existing").mkdir()
+    assert main([fmu_path(MODEL), *SMALL, "--out", str(tmp_path / "existing")]) == 0
+    assert [f for f in _written(tmp_path) if f.startswith("existing")] == [
+        "existing/TransverseFriction-sweep.csv", "existing/TransverseFriction-sweep.json",
+        "existing/TransverseFriction-sweep.svg"]
+
+
+def _free_port():
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        return probe.getsockname()[1]
+
+
+def test_scheduler_that_does_not_answer_is_refused(tmp_path, capsys):
+    out = tmp_path / "refused"
+    address = f"tcp://127.0.0.1:{_free_port()}"
+    began = time.monotonic()
+    message = _refusal(capsys, [fmu_path(MODEL), *SMALL_PLAN, "--scheduler", address,
+                                "--connect-timeout", "0.5", "--out", str(out)], out)
+    assert message == (f"error: --scheduler {address}: no Dask scheduler answered within 0.5 s "
+                       "(--connect-timeout)")
+    assert time.monotonic() - began < 5
+
+
+@pytest.mark.parametrize("extra, said", [
+    (["--scheduler", "local:0"], "--scheduler local:0: expected local or local:N, N >= 1"),
+    (["--scheduler", "local:two"], "--scheduler local:two: expected local or local:N"),
+    (["--scheduler", "local:2", "--workers", "2"], "--workers sizes the local process pool"),
+    (["--connect-timeout", "nan"], "argument --connect-timeout: 'nan': expected a number of "
+                                   "seconds > 0"),
+])
+def test_scheduler_arguments_are_checked(tmp_path, capsys, extra, said):
+    out = tmp_path / "refused"
+    message = _refusal(capsys, [fmu_path(MODEL), *SMALL_PLAN, "--out", str(out), *extra], out)
+    assert said in message
+
+
+def test_a_summary_without_a_finite_value_fails_its_point(tmp_path):
+    """A window holding no communication point has no mean: the point is an error with the
+    reason, never a NaN with status ok; any failed point makes the exit status 1."""
+    empty = Output("FFx", Span(0.0))
+    rows = run_sweep(fmu_path(MODEL), Plan(grid={"vd": [1e-4]}, fixed={"f": F},
+                                           outputs=[Output("FFx_mean"), empty],
+                                           stop_time=Span(3.0, "f"), step=Span(1.0, "f")),
+                     workers=1, progress=False)[0]
+    assert rows[0]["status"] == "error"
+    assert rows[0]["message"] == "FFx:mean_last=0: no communication point in the last 0 s " \
+                                 "before t = 0.001 s"
+    assert empty.column not in rows[0] and "FFx_mean" not in rows[0]
+    out = tmp_path / "nan"
+    assert main([fmu_path(MODEL), *SMALL, "--output", "FFx:mean_last=0", "--out", str(out)]) == 1
+    with open(out.with_suffix(".csv")) as handle:
+        assert {(r["status"], r["FFx:mean_last=0"]) for r in csv.DictReader(handle)} == {
+            ("error", "")}
+
+
+def test_exit_status_is_1_when_some_points_fail(tmp_path):
+    # the stiff contact of test_discarded_step_is_recorded_with_its_time: one point of two fails
+    out = tmp_path / "some"
+    code = main([fmu_path(MODEL), "--grid", "kt=62.86e6,62.86e9", "--set", "solver=rk4",
+                 "--set", "steps_per_period=50", "--set", "f=3000", "--output", "FFx_mean",
+                 "--stop-time", str(STOP), "--step", "1/f", "--workers", "1", "--quiet",
+                 "--out", str(out)])
+    assert code == 1
+    with open(out.with_suffix(".csv")) as handle:
+        assert [r["status"] for r in csv.DictReader(handle)] == ["ok", "discard"]
+
+
+def _csv_rows(path):
+    with open(path) as handle:
+        return [{k: v for k, v in r.items() if k != "wall_time_s"} for r in csv.DictReader(handle)]
+
+
+def test_periods_of_a_parameter_the_plan_does_not_set_use_its_start_value(tmp_path):
+    """`3/f` and `mean_last=1/f` with no f in the plan are periods of the FMU's start value of
+    f (3 kHz): the same rows as with f = 3000 set."""
+    common = [fmu_path(MODEL), "--grid", "vd=1e-4,2e-4", "--output", "FFx_mean", "--output",
+              "FFx:mean_last=1/f", "--stop-time", "3/f", "--step", "0.25/f", "--workers", "1",
+              "--quiet"]
+    assert _start_value("f") == "3e3"
+    assert main([*common, "--out", str(tmp_path / "default")]) == 0
+    assert main([*common, "--set", "f=3000", "--out", str(tmp_path / "set")]) == 0
+    default = _csv_rows(tmp_path / "default.csv")
+    assert default == _csv_rows(tmp_path / "set.csv")
+    assert [r["status"] for r in default] == ["ok", "ok"]
+
+
+def _start_value(variable):
+    md = fmpy.read_model_description(fmu_path(MODEL))
+    return next(v.start for v in md.modelVariables if v.name == variable)
+
+
+def test_start_line_comes_first_and_progress_is_plain_lines_off_a_terminal(tmp_path):
+    env = {"PYTHONPATH": str(ROOT / "python"), "PATH": "/usr/bin:/bin"}
+    out = tmp_path / "plain"
+    done = subprocess.run([sys.executable, "-m", "friction_fmu.sweep", fmu_path(MODEL),
+                           *[a for a in SMALL if a != "--quiet"], "--out", str(out)],
+                          capture_output=True, text=True, env=env, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert "\r" not in done.stderr and "\x1b" not in done.stderr
+    lines = done.stderr.splitlines()
+    assert lines[0] == (f"sweeping TransverseFriction: 2 points on local, 1 process, writing "
+                        f"{out}.csv (and .svg, .json)")
+    assert lines[-1].startswith("2/2  elapsed ")
+    assert len(lines) <= 3  # a line every 5 s at most, and the last
+
+
+def test_command_line_on_a_scheduler_address(cluster, tmp_path):
+    out = tmp_path / "address"
+    assert main([fmu_path(MODEL), *SMALL_PLAN, "--scheduler", cluster.scheduler_address,
+                 "--out", str(out)]) == 0
+    summary = json.loads(out.with_suffix(".json").read_text())
+    assert summary["executor"] == f"dask {cluster.scheduler_address}"
+    assert [r["status"] for r in _csv_rows(out.with_suffix(".csv"))] == ["ok", "ok"]
+
+
+def test_local_scheduler_starts_a_cluster_without_pythonpath(tmp_path):
+    """`--scheduler local:1` starts its own LocalCluster; run from python/ with no PYTHONPATH,
+    its worker imports the package all the same, and the rows are those of the local pool."""
+    env = {"PATH": "/usr/bin:/bin", "TMPDIR": str(tmp_path)}
+    out = tmp_path / "local"
+    done = subprocess.run([sys.executable, "-m", "friction_fmu.sweep", fmu_path(MODEL),
+                           *SMALL_PLAN, "--scheduler", "local:1", "--out", str(out)],
+                          capture_output=True, text=True, env=env, timeout=120,
+                          cwd=ROOT / "python")
+    assert done.returncode == 0, done.stderr
+    summary = json.loads(out.with_suffix(".json").read_text())
+    assert summary["executor"] == "a Dask LocalCluster of 1 worker"
+    assert main([fmu_path(MODEL), *SMALL, "--out", str(tmp_path / "pool")]) == 0
+    assert _csv_rows(out.with_suffix(".csv")) == _csv_rows(tmp_path / "pool.csv")
 
 
 def test_workers_remove_their_extracted_fmu(tmp_path):
