@@ -37,9 +37,11 @@ cargo build --release
 target/release/friction-fmu build
 target/release/friction-fmu build scenes/*.toml --out fmu-out/scenes
 echo "== cargo test"
-cargo test --release
+# The testing profile (Cargo.toml) builds in target/testing: the main command's target/release is
+# left as it is, so neither rebuilds the other.
+cargo test --profile testing
 echo "== fuzzing under valgrind memcheck (invalid reads and writes, use after free)"
-FUZZ_BIN=$(cargo test --release --test fuzz_calls --no-run 2>&1 | grep -o 'target/release/deps/fuzz_calls-[0-9a-f]*' | head -1)
+FUZZ_BIN=$(cargo test --profile testing --test fuzz_calls --no-run 2>&1 | grep -o 'target/testing/deps/fuzz_calls-[0-9a-f]*' | head -1)
 FUZZ_SEQUENCES=20000 valgrind --error-exitcode=9 --leak-check=no -q "$FUZZ_BIN" random_call_sequences
 echo "== pytest (fmpy, libcosim, ecos, the C host natively and under wine)"
 # wine's prefix outside the source tree: cargo scans the package directory, and the prefix links

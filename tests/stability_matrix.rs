@@ -7,7 +7,7 @@
 //! the outputs of that time; never NaN); passivity of the contact (W_diss, the friction work
 //! minus the stored energy, never below zero beyond round-off); a solver run tighter lands
 //! closer to its own far tighter run than a looser one does.
-//! `cargo test --release --test stability_matrix -- --nocapture` prints the matrix.
+//! `cargo test --profile testing --test stability_matrix -- --nocapture` prints the matrix.
 #![cfg(all(
     target_os = "linux",
     any(target_arch = "x86_64", target_arch = "aarch64")
@@ -21,7 +21,7 @@ use friction_fmu::scenes::model;
 #[test]
 fn every_solver_meets_every_extreme_soundly() {
     let threads = std::thread::available_parallelism().map_or(2, |n| n.get().min(4));
-    let rows = stability::matrix(threads);
+    let rows = stability::matrix(threads, &|_, _| {});
     stability::print(&rows, &mut std::io::stdout()).unwrap();
     let unsound: Vec<_> = rows.iter().filter(|r| !r.sound()).collect();
     assert!(unsound.is_empty(), "unsound rows: {unsound:#?}");
