@@ -8,9 +8,14 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# libclang-dev: bindgen, for the fmi crate; valgrind: memcheck; libtbb12: ecos; mingw-w64,
-# rustc-web, cargo-web, rust-web-src: the win64 library; wine64: runs the C host on it.
-APT_PACKAGES="libclang-dev valgrind libtbb12 mingw-w64 rustc-web cargo-web rust-web-src wine64"
+# libclang-dev: bindgen, for the fmi crate; valgrind: memcheck; libtbb12: ecos; mingw-w64: links
+# the win64 library; wine64: runs the C host on it. The win64 standard library comes with
+# rustup; where rustup cannot add it, Debian's Rust builds it from source (slower).
+APT_PACKAGES="libclang-dev valgrind libtbb12 mingw-w64 wine64"
+if ! rustup target add x86_64-pc-windows-gnu >/dev/null 2>&1; then
+    echo "== rustup cannot add x86_64-pc-windows-gnu: Debian's Rust builds its standard library"
+    APT_PACKAGES="$APT_PACKAGES rustc-web cargo-web rust-web-src"
+fi
 missing=""
 for package in $APT_PACKAGES; do
     dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing="$missing $package"

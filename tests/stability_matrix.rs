@@ -268,3 +268,30 @@ fn steady_sliding_dissipates_fc_times_vd() {
         );
     }
 }
+
+/// Far from t = 0 a double's resolution of time passes the tolerance of the period readings:
+/// the first step there returns fmi2Warning, saying so, and later steps fmi2OK; a run near 0
+/// says nothing. LongitudinalFriction at 60 kHz: at 1e5 s time is resolved to 2e-11 s, 1.3e-6
+/// of a period, above the default tolerance.
+#[test]
+fn a_clock_too_coarse_for_the_tolerance_is_said_once() {
+    let table = model("LongitudinalFriction").unwrap().table;
+    let step = table.default_experiment.step_size;
+    for (start, expected) in [(0.0, Status::Ok), (1e5, Status::Warning)] {
+        let mut fmu = Instance::new("LongitudinalFriction", "clock").unwrap();
+        assert_eq!(fmu.setup_experiment(None, start, None), Status::Ok);
+        assert_eq!(fmu.enter_initialization_mode(), Status::Ok);
+        assert_eq!(fmu.exit_initialization_mode(), Status::Ok);
+        let first = fmu.do_step(start, step, true);
+        assert_eq!(first, expected, "from {start}: {}", fmu.last_message());
+        if expected == Status::Warning {
+            assert!(
+                fmu.last_message().contains("a double resolves time to"),
+                "{}",
+                fmu.last_message()
+            );
+        }
+        let second = fmu.do_step(start + step, step, true);
+        assert_eq!(second, Status::Ok, "from {start}: {}", fmu.last_message());
+    }
+}

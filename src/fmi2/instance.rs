@@ -11,7 +11,7 @@ use crate::interface::unread_inputs::UnreadInputs;
 use crate::interface::values::{check_value, ValueSet};
 use crate::interface::variable::{Causality, Kind, Variability, Variable, LOG_CATEGORIES};
 use crate::scene_file::registry::Loaded;
-use crate::scenes::{Model, Scene, Scope, HELD_INPUTS};
+use crate::scenes::{clock_warning, Model, Scene, Scope, HELD_INPUTS};
 use std::sync::Arc;
 
 /// Where an instance is in its life (FMI 2.0 co-simulation state machine).
@@ -113,6 +113,8 @@ pub struct Instance {
     pending_derivatives: Vec<(u32, f64)>,
     /// Inputs set while their switch says they are not read.
     unread_inputs: UnreadInputs,
+    /// Whether this run has said that the clock bounds the readings' accuracy.
+    clock_warned: bool,
 }
 
 impl Instance {
@@ -142,6 +144,7 @@ impl Instance {
             snapshots: Vec::new(),
             rollback: Vec::with_capacity(ROLLBACK_CAPACITY),
             unread_inputs: UnreadInputs::default(),
+            clock_warned: false,
             pending_derivatives: Vec::with_capacity(
                 model
                     .table
@@ -314,6 +317,7 @@ impl Instance {
         self.last_successful_time = 0.0;
         self.pending_derivatives.clear();
         self.unread_inputs.clear();
+        self.clock_warned = false;
         Status::Ok
     }
 
@@ -653,12 +657,19 @@ impl Instance {
                 self.last_successful_time = self.time;
                 // A step that succeeded but left a warning (a solver that is a poor fit):
                 // fmi2Warning, with the message logged (FMI 2.0, 2.1.3).
-                match scene.take_warning() {
-                    Some(message) => {
-                        self.warning(&format!("fmi2DoStep: {message}"));
-                        Status::Warning
-                    }
-                    None => Status::Ok,
+                let clock = match scene.reading_period() {
+                    Some(reading) if !self.clock_warned => clock_warning(self.time, reading),
+                    _ => None,
+                };
+                self.clock_warned |= clock.is_some();
+                let warnings = [scene.take_warning(), clock];
+                for message in warnings.iter().flatten() {
+                    self.warning(&format!("fmi2DoStep: {message}"));
+                }
+                if warnings.iter().any(Option::is_some) {
+                    Status::Warning
+                } else {
+                    Status::Ok
                 }
             }
             Err(message) => {

@@ -5,10 +5,10 @@
 //! - linux64: `cargo-zigbuild` and `ziglang` from PyPI (in `.venv` or on PATH) link against
 //!   glibc 2.17's symbol versions; without them, this machine's cargo and glibc, and one line
 //!   saying so;
-//! - win64: Debian's `rustc-web`, `cargo-web` and `rust-web-src` build the standard library for
-//!   `x86_64-pc-windows-gnu` (the rustup toolchain here has no Windows target), `mingw-w64`
-//!   links, with thin link-time optimisation; without them, one line saying the FMUs carry
-//!   linux64 only.
+//! - win64: this machine's toolchain with its `x86_64-pc-windows-gnu` standard library (`rustup
+//!   target add x86_64-pc-windows-gnu`), or else Debian's `rustc-web`, `cargo-web` and
+//!   `rust-web-src`, which build that standard library from source; `mingw-w64` links, with thin
+//!   link-time optimisation; without either, one line saying the FMUs carry linux64 only.
 //!
 //! On a machine that is not x86_64 Linux, this machine's platform alone, with its own cargo.
 
@@ -33,6 +33,8 @@ enum Toolchain {
     Host,
     /// cargo-zigbuild at this path, for linux64 with glibc 2.17.
     Zig(PathBuf),
+    /// This machine's cargo with its installed Windows standard library, for win64.
+    Windows,
     /// Debian's cargo with -Zbuild-std, for win64.
     DebianWindows,
 }
@@ -63,11 +65,13 @@ pub fn libraries(root: &Path, trimmable: impl Fn(&str) -> bool) -> Result<Vec<Li
         toolchains.push((host_platform, Toolchain::Host));
     }
     if host_platform != "win64" {
-        if windows_toolchain() {
+        if on_path(MINGW_GCC).is_some() && windows_std_installed() {
+            toolchains.push(("win64", Toolchain::Windows));
+        } else if on_path(MINGW_GCC).is_some() && debian_windows_toolchain() {
             toolchains.push(("win64", Toolchain::DebianWindows));
         } else {
             eprintln!(
-                "note: packing {host_platform} only; for win64 too: apt-get install rustc-web cargo-web rust-web-src mingw-w64"
+                "note: packing {host_platform} only; for win64 too: apt-get install mingw-w64, and rustup target add {WINDOWS_TARGET} (or apt-get install rustc-web cargo-web rust-web-src)"
             );
         }
     }
@@ -113,9 +117,32 @@ fn find_zigbuild(root: &Path) -> Option<PathBuf> {
         .or_else(|| on_path("cargo-zigbuild"))
 }
 
-fn windows_toolchain() -> bool {
-    on_path(MINGW_GCC).is_some()
-        && Path::new(DEBIAN_CARGO).is_file()
+/// Whether this machine's compiler has the Windows standard library (rustup's rust-std
+/// component for the target).
+fn windows_std_installed() -> bool {
+    let rustc = std::env::var_os("RUSTC").unwrap_or("rustc".into());
+    Command::new(rustc)
+        .args(["--print", "target-libdir", "--target", WINDOWS_TARGET])
+        .output()
+        .ok()
+        .filter(|output| output.status.success())
+        .map(|output| PathBuf::from(String::from_utf8_lossy(&output.stdout).trim()))
+        .is_some_and(|libdir| has_std(&libdir))
+}
+
+/// Whether `libdir` holds a compiled standard library.
+fn has_std(libdir: &Path) -> bool {
+    std::fs::read_dir(libdir).is_ok_and(|entries| {
+        entries.filter_map(Result::ok).any(|entry| {
+            let name = entry.file_name();
+            let name = name.to_string_lossy();
+            name.starts_with("libstd-") && name.ends_with(".rlib")
+        })
+    })
+}
+
+fn debian_windows_toolchain() -> bool {
+    Path::new(DEBIAN_CARGO).is_file()
         && Path::new(DEBIAN_RUSTC).is_file()
         && Path::new(DEBIAN_STD_SOURCE).is_dir()
 }
@@ -157,6 +184,20 @@ fn build(toolchain: &Toolchain, root: &Path) -> Result<PathBuf, String> {
             (
                 command,
                 root.join(format!("target/{LINUX_TARGET}/{PROFILE}/examples")),
+            )
+        }
+        Toolchain::Windows => {
+            let mut command = Command::new(std::env::var_os("CARGO").unwrap_or("cargo".into()));
+            command
+                .arg("build")
+                .args(args)
+                .args(["--target", WINDOWS_TARGET])
+                .env("CARGO_TARGET_X86_64_PC_WINDOWS_GNU_LINKER", MINGW_GCC)
+                // As for DebianWindows.
+                .env("CARGO_PROFILE_FMU_LTO", "thin");
+            (
+                command,
+                root.join(format!("target/{WINDOWS_TARGET}/{PROFILE}/examples")),
             )
         }
         Toolchain::DebianWindows => {

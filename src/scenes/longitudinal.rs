@@ -19,6 +19,7 @@ use super::{require_passive, require_positive, resolved_energy, Scene, Scope};
 use crate::friction::{coulomb, dahl::Dahl, lugre::LuGre, sgn};
 use crate::interface::longitudinal::vr;
 use crate::interface::values::ValueSet;
+use crate::solve::phase::turns;
 use crate::solve::{within_step_budget, Work};
 use ode::Solver;
 use std::f64::consts::TAU;
@@ -48,6 +49,10 @@ pub struct Longitudinal {
     pub steps_per_period: u32,
     pub solver: Solver,
     t: f64,
+    /// The vibration's phase, in turns, at `t`. Within a step the equations run on the time
+    /// since the step's start, so that neither the phase nor the solvers' steps lose digits to
+    /// a large t.
+    phase0: f64,
     z: f64,
     /// The input velocity held over the current step.
     v_held: f64,
@@ -66,24 +71,42 @@ pub struct Longitudinal {
     pub tracks_mean: bool,
 }
 
-/// vr(t) for a velocity source, frequency f and held input.
-fn velocity_at(source: Velocity, f: f64, held: f64, t: f64) -> f64 {
+/// The vibration as the equations see it: frequency `f` and phase `phase0` (turns) at their
+/// time 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Clock {
+    f: f64,
+    phase0: f64,
+}
+
+impl Clock {
+    fn phase(self, t: f64) -> f64 {
+        self.phase0 + t * self.f
+    }
+}
+
+/// vr(t) for a velocity source, clock and held input.
+fn velocity_at(source: Velocity, clock: Clock, held: f64, t: f64) -> f64 {
     match source {
-        Velocity::Prescribed { vc, va } => vc + va * (TAU * (t * f).fract()).cos(),
+        Velocity::Prescribed { vc, va } => vc + va * (TAU * clock.phase(t).fract()).cos(),
         Velocity::Input => held,
     }
 }
 
 /// The sliding displacement, the integral of vr from `t0` to `t`.
-fn displacement(source: Velocity, f: f64, held: f64, t0: f64, t: f64) -> f64 {
+fn displacement(source: Velocity, clock: Clock, held: f64, t0: f64, t: f64) -> f64 {
     match source {
         Velocity::Prescribed { vc, va } => {
-            let sin = |t: f64| (TAU * (t * f).fract()).sin();
-            vc * (t - t0) + va / (TAU * f) * (sin(t) - sin(t0))
+            let sin = |t: f64| (TAU * clock.phase(t).fract()).sin();
+            vc * (t - t0) + va / (TAU * clock.f) * (sin(t) - sin(t0))
         }
         Velocity::Input => held * (t - t0),
     }
 }
+
+/// The accuracy a fixed-step solver's readings are held to for [`super::clock_warning`] (it has
+/// no tolerance; its error is set by steps_per_period).
+const FIXED_STEP_ACCURACY: f64 = 1e-9;
 
 pub fn build(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Box<dyn Scene>, String> {
     Ok(Box::new(Longitudinal::with_scope(
@@ -152,6 +175,7 @@ impl Longitudinal {
             steps_per_period,
             solver,
             t: start_time,
+            phase0: turns(start_time, f),
             z: 0.0,
             v_held: values.real(vr::VR_IN),
             mean: PeriodMean::new(start_time, 1.0 / f),
@@ -169,13 +193,21 @@ impl Longitudinal {
         })
     }
 
-    /// The sliding velocity at time t.
+    /// The equations' clock: their time 0 is the scene's time.
+    fn clock(&self) -> Clock {
+        Clock {
+            f: self.f,
+            phase0: self.phase0,
+        }
+    }
+
+    /// The sliding velocity `t` after the scene's time.
     pub fn velocity_at(&self, t: f64) -> f64 {
-        velocity_at(self.velocity, self.f, self.v_held, t)
+        velocity_at(self.velocity, self.clock(), self.v_held, t)
     }
 
     pub fn friction_force(&self) -> f64 {
-        let v = self.velocity_at(self.t);
+        let v = self.velocity_at(0.0);
         match self.law {
             Law::Coulomb => coulomb::force(self.fc, v),
             Law::Dahl(law) => law.force(self.z),
@@ -216,7 +248,7 @@ impl Longitudinal {
 
     /// The end of the sub-step starting at `t`: the next grid point (1/n period, fixed-step
     /// solvers only), sign change of vr, or period boundary, whichever comes first, but not past
-    /// `t_end`.
+    /// `t_end`. Times are absolute; the phase counts from the scene's time.
     fn substep_end(&self, t: f64, t_end: f64) -> f64 {
         let mut next = if self.tracks_mean {
             t_end.min(self.mean.next_boundary())
@@ -225,24 +257,26 @@ impl Longitudinal {
         };
         if let Velocity::Prescribed { vc, va } = self.velocity {
             let n = f64::from(self.steps_per_period);
-            let phase = t * self.f;
+            let phase = self.clock().phase(t - self.t);
+            // The absolute time of a phase (in turns).
+            let at = |phase: f64| self.t + (phase - self.phase0) / self.f;
             // Coulomb is always integrated in closed form on the grid: its sign at each sub-step's
             // midpoint must be the sign over the sub-step, which a whole period would not give
             // where vr only touches zero (vc = va).
             if self.solver.fixed_step() || (self.law == Law::Coulomb && self.coulomb_grid) {
                 // The grid point after t; phase*n can round just below an integer we reached.
                 let mut j = (phase * n).floor() + 1.0;
-                if j / (n * self.f) <= t {
+                if at(j / n) <= t {
                     j += 1.0;
                 }
-                next = next.min(j / (n * self.f));
+                next = next.min(at(j / n));
             }
             if vc.abs() < va {
                 // vr = 0 where cos(2 pi phase) = -vc/va: at phase fractions p and 1 - p.
                 let p = (-vc / va).acos() / TAU;
                 let k = phase.floor();
                 for crossing in [k + p, k + 1.0 - p, k + 1.0 + p, k + 2.0 - p] {
-                    let tc = crossing / self.f;
+                    let tc = at(crossing);
                     if tc > t {
                         next = next.min(tc);
                     }
@@ -284,7 +318,7 @@ impl Longitudinal {
             return None;
         }
         // vr keeps the sign s over the sub-step, so the distance slid grows with t.
-        let slid = |t: f64| s * displacement(self.velocity, self.f, self.v_held, t0, t);
+        let slid = |t: f64| s * displacement(self.velocity, self.clock(), self.v_held, t0, t);
         if slid(t1) <= distance {
             return None;
         }
@@ -313,9 +347,21 @@ impl Longitudinal {
             _ => None,
         };
         let t_ode = saturation.map_or(t1, |(t_sat, _, _)| t_sat);
-        let (source, f, held) = (self.velocity, self.f, self.v_held);
-        let velocity = move |t: f64| velocity_at(source, f, held, t);
-        let (mut integral, mut power_integral) = self.solver.advance(
+        let (source, clock, held) = (self.velocity, self.clock(), self.v_held);
+        let velocity = move |t: f64| velocity_at(source, clock, held, t);
+        // Sub-step ends that met in the round-off of the absolute time (a kink a few ulps after
+        // a period's boundary, say): one explicit step, as the adaptive solvers took there when
+        // they counted absolute time (counted from the step's start, they would take the
+        // interval for a real one and refine it).
+        let mut round_off = Solver::Rk4 {
+            h_max: f64::INFINITY,
+        };
+        let solver = if super::within_round_off(self.t + t0, self.t + t_ode) {
+            &mut round_off
+        } else {
+            &mut self.solver
+        };
+        let (mut integral, mut power_integral) = solver.advance(
             (&self.law, self.ode_dim),
             &velocity,
             t0,
@@ -331,17 +377,20 @@ impl Longitudinal {
                 integral += force * (t1 - t_sat);
             }
             if self.ode_dim > 2 {
-                power_integral += force * displacement(source, f, held, t_sat, t1);
+                power_integral += force * displacement(source, clock, held, t_sat, t1);
             }
         }
         Ok((integral, power_integral))
     }
 
-    fn substep(&mut self, t0: f64, t1: f64) -> Result<(), String> {
+    /// Advances over `[start, end]` (absolute times within the step under way).
+    fn substep(&mut self, start: f64, end: f64) -> Result<(), String> {
+        // The equations' time counts from the scene's time, the step's start.
+        let (t0, t1) = (start - self.t, end - self.t);
         if !matches!(self.solver, Solver::Exponential) && self.law != Law::Coulomb {
             let (integral, power_integral) = self.advance_ode(t0, t1)?;
             self.friction_work += power_integral;
-            self.mean.add(integral, t1);
+            self.mean.add(integral, end);
             return Ok(());
         }
         let h = t1 - t0;
@@ -367,7 +416,7 @@ impl Longitudinal {
         // The velocity is frozen over the sub-step, so this is the exact work of the scheme's
         // force: with the exact bristle update the scheme is as passive as the contact.
         self.friction_work += v * integral;
-        self.mean.add(integral, t1);
+        self.mean.add(integral, end);
         Ok(())
     }
 }
@@ -387,6 +436,7 @@ impl Scene for Longitudinal {
             t = next;
         }
         self.t = t_end;
+        self.phase0 = turns(t_end, self.f);
         if !self.z.is_finite() {
             return Err(format!(
                 "the bristle deflection became {} at t = {t_end}",
@@ -423,7 +473,7 @@ impl Scene for Longitudinal {
         let ft_mean = now.mean_force();
         values.set(vr::FT, now.friction_force());
         values.set(vr::Z, now.z);
-        values.set(vr::VR, now.velocity_at(now.t));
+        values.set(vr::VR, now.velocity_at(0.0));
         values.set(vr::FT_MEAN, ft_mean);
         values.set(vr::S, (1.0 - ft_mean / now.fc) * 100.0);
         values.set(vr::W_DISS, now.dissipated_energy());
@@ -438,6 +488,13 @@ impl Scene for Longitudinal {
         Some(super::stiff_warning(t, "radau5 or exponential"))
     }
 
+    fn reading_period(&self) -> Option<(f64, f64)> {
+        Some((
+            1.0 / self.f,
+            self.solver.rtol().unwrap_or(FIXED_STEP_ACCURACY),
+        ))
+    }
+
     fn save_into(&self, out: &mut Vec<f64>) {
         out.clear();
         out.extend_from_slice(&[self.t, self.z, self.v_held]);
@@ -448,6 +505,7 @@ impl Scene for Longitudinal {
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
         super::check_saved("LongitudinalFriction", state, 8)?;
         self.t = state[0];
+        self.phase0 = turns(self.t, self.f);
         self.z = state[1];
         self.v_held = state[2];
         self.mean.restore(&state[3..6]);
@@ -788,5 +846,50 @@ mod tests {
                 .is_some_and(|e| e.contains("created energy")),
             "rk4 far beyond its stability bound: {refused:?}"
         );
+    }
+
+    /// Oracle: the same run from t = 0. Within a step the phase and the solvers' time count from
+    /// the step's start, so a run started a whole number of periods far from 0 is the same run
+    /// but for where the master's clock (a double) puts the communication points, and with them
+    /// the period over which FT_mean is taken: it differs by no more than that resolution allows
+    /// (ulp(t) f of a period, times the force's swing over its mean), and the scene asks for the
+    /// warning that says so once that resolution passes the tolerance.
+    #[test]
+    fn a_run_started_far_from_zero_is_the_run_started_at_zero() {
+        let trace_from = |v: &ValueSet, t0: f64| {
+            let mut scene = Longitudinal::new(v, t0).unwrap();
+            let mut out = v.clone();
+            for _ in 0..20 {
+                scene.do_step(1.0 / scene.f, v).unwrap();
+            }
+            scene.write_outputs(&mut out);
+            (out.real(vr::FT_MEAN), out.real(vr::S))
+        };
+        for (law, solver) in [
+            ("dahl", "dopri5"),
+            ("dahl", "radau5"),
+            ("dahl", "exponential"),
+            ("lugre", "dopri5"),
+            ("coulomb", "dopri5"),
+        ] {
+            let mut v = values(law, 0.146);
+            v.set(vr::SOLVER, f64::from(SOLVER.value_of(solver).unwrap()));
+            let (mean, s) = trace_from(&v, 0.0);
+            let fc = 0.1 * 0.02 * 9.81;
+            // 60 kHz: 6e9 and 6e10 periods.
+            for t0 in [1e5, 1e6] {
+                let (far_mean, far_s) = trace_from(&v, t0);
+                let error = (far_mean / mean - 1.0).abs();
+                let resolution = f64::EPSILON * t0 * 60e3;
+                assert!(
+                    error < 4.0 * resolution * fc / mean,
+                    "{law} {solver} from {t0}: FT_mean {far_mean} vs {mean} ({error:.1e}), S {far_s} vs {s}"
+                );
+                let scene = Longitudinal::new(&v, t0).unwrap();
+                let reading = scene.reading_period().unwrap();
+                assert!(crate::scenes::clock_warning(t0, reading).is_some());
+                assert!(crate::scenes::clock_warning(1e-3, reading).is_none());
+            }
+        }
     }
 }

@@ -58,6 +58,12 @@ pub trait Scene: Send {
         None
     }
 
+    /// The period the scene's readings (means, amplitudes) are taken over and the relative
+    /// accuracy asked of them, for [`clock_warning`]; None for a scene without such readings.
+    fn reading_period(&self) -> Option<(f64, f64)> {
+        None
+    }
+
     /// The first time derivative of an output now, where it is exact and cheap (the inputs'
     /// current values are in `values`); refuses the others (the default: all).
     fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {
@@ -72,6 +78,27 @@ fn stiff_warning(t: f64, instead: &str) -> String {
     format!(
         "solver dopri5 found the problem stiff from t = {t:e} s on: its steps are held by its stability, not by the tolerance, so the run is slow (though accurate); {instead} takes far fewer steps here"
     )
+}
+
+/// Far from t = 0 a double resolves time only to about ulp(t), and a master's communication
+/// points, and with them where a period's reading starts and ends, round by that much. Once that
+/// is more than `tolerance` of the `period`, the clock, not the solver, bounds the readings'
+/// accuracy: said once a run (None while it is not so).
+pub fn clock_warning(t: f64, (period, tolerance): (f64, f64)) -> Option<String> {
+    let resolution = f64::EPSILON * t.abs();
+    (resolution > tolerance * period).then(|| {
+        format!(
+            "at t = {t:e} s a double resolves time to {resolution:.1e} s, {:.1e} of the {period:e} s period the readings are taken over and more than the tolerance {tolerance:e}: means and amplitudes are now accurate to about that fraction only; start the experiment nearer t = 0",
+            resolution / period
+        )
+    })
+}
+
+/// Whether `[start, end]` is a few ulps of the absolute time long: sub-step ends (a period's
+/// boundary, a kink) that met in the clock's round-off. Nothing happens over it that the clock
+/// resolves, and a solver counting time from the step's start would take it for a real interval.
+pub fn within_round_off(start: f64, end: f64) -> bool {
+    end - start <= 16.0 * f64::EPSILON * start.abs().max(end.abs())
 }
 
 /// Why a scene without input derivatives refuses one.

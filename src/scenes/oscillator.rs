@@ -144,10 +144,15 @@ impl PeriodMax {
         self.start_time + (self.completed + 1) as f64 * self.period
     }
 
+    /// As [`super::period_mean::PeriodMean::slack`].
+    fn slack(&self, t: f64) -> f64 {
+        (1e-9 * self.period).max(4.0 * f64::EPSILON * t.abs())
+    }
+
     /// Adds the largest |u| of a sub-interval ending at t_end (where |u| = `at_end`).
     fn add(&mut self, largest: f64, t_end: f64, at_end: f64) {
         self.running = self.running.max(largest);
-        if t_end >= self.next_boundary() - 1e-9 * self.period {
+        if t_end >= self.next_boundary() - self.slack(t_end) {
             self.last = self.running;
             self.running = at_end;
             self.completed += 1;
@@ -175,6 +180,8 @@ pub struct Oscillator {
     /// u_amplitude is read: extremes of u located inside sub-steps, sub-steps cut at the
     /// forcing period's boundaries.
     pub tracks_amplitude: bool,
+    /// rtol: the accuracy the amplitude is asked to (see [`super::clock_warning`]).
+    reading_tolerance: f64,
     pub work: Work,
 }
 
@@ -271,6 +278,7 @@ impl Oscillator {
                 last: u0.abs(),
             },
             tracks_amplitude: scope.exposes(vr::U_AMPLITUDE),
+            reading_tolerance: rtol,
             work: Work::default(),
         })
     }
@@ -376,7 +384,7 @@ impl Oscillator {
             // A boundary at or before t (lost to round-off far from the start time) must not
             // stall the loop.
             let segment_end =
-                if boundary < t_end - 1e-9 * self.amplitude.period && boundary > self.state.t {
+                if boundary < t_end - self.amplitude.slack(t_end) && boundary > self.state.t {
                     boundary
                 } else {
                     t_end
@@ -489,6 +497,11 @@ impl Scene for Oscillator {
         };
         let t = solver.stiff_since()?;
         Some(super::stiff_warning(t, "radau5"))
+    }
+
+    fn reading_period(&self) -> Option<(f64, f64)> {
+        self.tracks_amplitude
+            .then_some((self.amplitude.period, self.reading_tolerance))
     }
 
     fn save_into(&self, out: &mut Vec<f64>) {

@@ -30,11 +30,18 @@ impl PeriodMean {
         self.start_time + (self.completed + 1) as f64 * self.period
     }
 
+    /// How close to a boundary a time at `t` counts as on it: a billionth of a period (the
+    /// round-off of a master's clock), or, far from t = 0, four ulps of t, since a master's
+    /// clock rounds by that much there.
+    pub fn slack(&self, t: f64) -> f64 {
+        (1e-9 * self.period).max(4.0 * f64::EPSILON * t.abs())
+    }
+
     /// Adds the integral over a sub-step ending at `t_end`; closes the period when `t_end` is on
-    /// its boundary (to within a billionth of a period, the round-off of a master's clock).
+    /// its boundary (to within [`PeriodMean::slack`]).
     pub fn add(&mut self, integral: f64, t_end: f64) {
         self.integral += integral;
-        if t_end >= self.next_boundary() - 1e-9 * self.period {
+        if t_end >= self.next_boundary() - self.slack(t_end) {
             self.last_mean = self.integral / self.period;
             self.integral = 0.0;
             self.completed += 1;

@@ -28,7 +28,7 @@ use crate::interface::transverse::vr;
 use crate::interface::values::ValueSet;
 use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
 use crate::solve::narrow::Narrow;
-use crate::solve::phase::cos_turns;
+use crate::solve::phase::{cos_turns, turns};
 use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
 use crate::solve::{within_step_budget, Integrator, Ode, Work, MAX_DIM};
@@ -150,19 +150,31 @@ pub struct Params {
     pub f: f64,
     /// Body held at x = y = 0 (Fig. 4b).
     pub held: bool,
+    /// The support's phase, in turns, at the scene's current time. The equations run on the
+    /// time since then, so that neither the forcing's phase nor the solvers' steps lose digits
+    /// to a large start time.
+    pub phase0: f64,
 }
 
 impl Params {
-    /// The velocity of the contact point M carried by the support: eta * (0, yp').
+    /// The velocity of the contact point M carried by the support: eta * (0, yp'), `t` after
+    /// the scene's current time (as every time these equations take).
     #[inline]
     pub fn support_velocity(&self, t: f64) -> Vector2<f64> {
-        // The phase in turns keeps cos accurate however long the run.
-        Vector2::new(0.0, self.eta * self.va * cos_turns(t * self.f))
+        Vector2::new(
+            0.0,
+            self.eta * self.va * cos_turns(self.phase0 + t * self.f),
+        )
     }
 
     /// Support displacement yp = u0 sin(wt), u0 = va/w.
     pub fn support_position(&self, t: f64) -> f64 {
-        self.va / (TAU * self.f) * (TAU * (t * self.f).fract()).sin()
+        self.va / (TAU * self.f) * (TAU * (self.phase0 + t * self.f).fract()).sin()
+    }
+
+    /// Moves the time origin of the equations to the absolute time `t`.
+    fn set_time(&mut self, t: f64) {
+        self.phase0 = turns(t, self.f);
     }
 
     #[inline]
@@ -521,6 +533,7 @@ impl Transverse {
             va,
             f,
             held,
+            phase0: turns(start_time, f),
         };
         let drive = match values.item(vr::DRIVE_SOURCE) {
             "input" => Drive::Input,
@@ -621,7 +634,7 @@ impl Transverse {
         match &self.solver {
             Solver::TwoPhase(tp) => tp.forces(),
             _ => {
-                let c = self.p.contact(self.t, &self.y);
+                let c = self.p.contact(0.0, &self.y);
                 (c.ff, c.ffx(), c.ffy(), c.s, c.beta())
             }
         }
@@ -646,8 +659,20 @@ impl Transverse {
         self.y[W] - 0.5 * self.p.law.kt * s * s
     }
 
-    /// Advances over one sub-step `[t0, t1]` that lies within one period.
-    fn substep(&mut self, t0: f64, t1: f64, vd: DriveVelocity) -> Result<(), String> {
+    /// Advances over one sub-step `[start, end]` that lies within one period; `origin` is the
+    /// absolute time the equations' time counts from (the step's start).
+    fn substep(
+        &mut self,
+        origin: f64,
+        (start, end): (f64, f64),
+        vd: DriveVelocity,
+    ) -> Result<(), String> {
+        let (t0, t1) = (start - origin, end - origin);
+        // Sub-step ends that met in the round-off of the absolute time (a period's boundary a
+        // few ulps from the master's point): one explicit step, as the adaptive solvers took
+        // there when they counted absolute time (counted from the step's start, they would take
+        // the interval for a real one and refine it).
+        let round_off = super::within_round_off(start, end);
         self.y[Q] = 0.0;
         let band_points = band_points(&self.solver);
         let planar = Equations::new(&self.p, vd, band_points);
@@ -659,6 +684,12 @@ impl Transverse {
         };
         let eq: &dyn Switching = if self.trim.axial { &axial } else { &planar };
         match &mut self.solver {
+            Solver::Dopri5(_) | Solver::Radau5(_) if round_off => {
+                let mut rk = Rk4 {
+                    h_max: f64::INFINITY,
+                };
+                rk.integrate(eq, t0, t1, &mut self.y, &mut self.work)?;
+            }
             // On the equations' own types rather than through `eq`: the contact then inlines
             // into the right-hand side, and the step takes about 14 % fewer instructions.
             Solver::Dopri5(d) if self.trim.axial => {
@@ -675,7 +706,7 @@ impl Transverse {
                 rk.integrate(eq, t0, t1, &mut self.y, &mut self.work)?;
             }
             Solver::TwoPhase(tp) => {
-                tp.advance(&self.p, vd, t0, t1, &mut self.y, &mut self.work)?;
+                tp.advance(&self.p, vd, (origin, t0, t1), &mut self.y, &mut self.work)?;
             }
             Solver::Exponential(ex) => {
                 let stepper = exponential::Stepper {
@@ -687,7 +718,7 @@ impl Transverse {
             }
         }
         if self.trim.mean {
-            self.mean.add(self.y[Q], t1);
+            self.mean.add(self.y[Q], end);
         }
         Ok(())
     }
@@ -715,8 +746,9 @@ impl Scene for Transverse {
             } else {
                 0.0
             },
-            t0: self.t,
+            t0: 0.0,
         };
+        let origin = self.t;
         let t_end = self.t + h;
         let mut t = self.t;
         let at_start = self.work;
@@ -730,16 +762,17 @@ impl Scene for Transverse {
                 f64::INFINITY
             };
             // A boundary within round-off of t_end is t_end (the master's clock drifts).
-            let next = if boundary < t_end - 1e-9 / self.p.f {
+            let next = if boundary < t_end - self.mean.slack(t_end) {
                 boundary
             } else {
                 t_end
             };
             let next = if next > t { next } else { t_end };
-            self.substep(t, next, vd)?;
+            self.substep(origin, (t, next), vd)?;
             t = next;
         }
         self.t = t_end;
+        self.p.set_time(t_end);
         let (ff, _, _, s, _) = self.forces();
         if self.y.iter().all(|v| v.is_finite()) && ff.is_finite() {
             // The bristle damping ht (eq. 5) can return a little energy in transients, hence
@@ -789,6 +822,11 @@ impl Scene for Transverse {
         Some(super::stiff_warning(t, "radau5 or exponential"))
     }
 
+    fn reading_period(&self) -> Option<(f64, f64)> {
+        // A fixed-step solver has no tolerance; its error is set by steps_per_period.
+        Some((1.0 / self.p.f, self.solver.rtol().unwrap_or(1e-9)))
+    }
+
     fn save_into(&self, out: &mut Vec<f64>) {
         // The pending rate of vd_in is state too (FMI 2.0, 2.1.8): see DriveTrain's.
         out.clear();
@@ -811,6 +849,7 @@ impl Scene for Transverse {
         };
         super::check_saved("TransverseFriction (with this solver)", state, base + extra)?;
         self.t = state[0];
+        self.p.set_time(self.t);
         self.vd_held = state[1];
         self.vd_rate = state[2];
         self.y.copy_from_slice(&state[3..3 + MAX_DIM]);
@@ -845,8 +884,8 @@ impl Scene for Transverse {
     fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {
         let vd = self.drive_velocity_now(values);
         let mut dydt = [0.0; MAX_DIM];
-        Equations::new(&self.p, vd, &[]).rhs(self.t, &self.y, &mut dydt);
-        let c = self.p.contact(self.t, &self.y);
+        Equations::new(&self.p, vd, &[]).rhs(0.0, &self.y, &mut dydt);
+        let c = self.p.contact(0.0, &self.y);
         let z = Vector2::new(self.y[ZX], self.y[ZY]);
         // s' = e . z'; beta' from z = s (cos beta, -sin beta): beta' = -(z x z') / s^2 (0 on
         // an undeflected bristle, whose direction is that of the slip).
@@ -890,33 +929,28 @@ impl Transverse {
             } else {
                 0.0
             },
-            t0: self.t,
+            t0: 0.0,
         }
     }
 
     /// (FF, FFx, FFy)' as the centred difference of the forces at t +- eps along the
     /// equations' tangent y +- eps y': the terms of second order in eps cancel, so the error
     /// is of order (eps / T)^2 for the fastest time scale T met. eps is a millionth of the
-    /// vibration's 1/(2 pi f), at most 1 ns, and at least 64 ulps of t, so that round-off stays
-    /// small: at 3 kHz, 53 ps, so (eps / T)^2 is 1e-12 in steady sliding and 3e-7 in the
-    /// Stribeck band, which the paper's values cross in about 100 ns.
+    /// vibration's 1/(2 pi f) and at most 1 ns (the equations' time counts from now, so any
+    /// eps is resolved): at 3 kHz, 53 ps, so (eps / T)^2 is 1e-12 in steady sliding and 3e-7 in
+    /// the Stribeck band, which the paper's values cross in about 100 ns.
     fn force_rates(&self, dydt: &[f64; MAX_DIM]) -> [f64; 3] {
-        let t = self.t;
-        let eps = (1e-6 / (TAU * self.p.f))
-            .min(1e-9)
-            .max(64.0 * f64::EPSILON * t.abs());
+        let eps = (1e-6 / (TAU * self.p.f)).min(1e-9);
         let forces_at = |tau: f64| {
             let mut y = [0.0; MAX_DIM];
             for ((y, y0), d) in y.iter_mut().zip(&self.y).zip(dydt) {
                 *y = y0 + tau * d;
             }
-            let c = self.p.contact(t + tau, &y);
+            let c = self.p.contact(tau, &y);
             [c.ff, c.ffx(), c.ffy()]
         };
-        // The offsets t +- eps actually represent, so that the difference is over them.
-        let (ahead, behind) = ((t + eps) - t, t - (t - eps));
-        let (plus, minus) = (forces_at(ahead), forces_at(-behind));
-        [0, 1, 2].map(|k| (plus[k] - minus[k]) / (ahead + behind))
+        let (plus, minus) = (forces_at(eps), forces_at(-eps));
+        [0, 1, 2].map(|k| (plus[k] - minus[k]) / (2.0 * eps))
     }
 
     /// vd as the outputs see it: vd_in's current value when it is the source (Fd's hd term

@@ -1,4 +1,4 @@
-//! cos(2 pi x) for a phase `x` in turns, for periodic forcing that a right-hand side evaluates
+//! The phase of a periodic forcing in turns ([`turns`]), and cos(2 pi x) for a phase `x` in turns, for periodic forcing that a right-hand side evaluates
 //! at every stage. libm's cos plus the reduction `fract` cost about as much as the rest of scene
 //! T's right-hand side; reducing in turns is exact, which leaves two short polynomials.
 //!
@@ -79,9 +79,49 @@ pub fn cos_turns(x: f64) -> f64 {
     f64::from_bits(v.to_bits() ^ flip)
 }
 
+/// The fraction of a turn of `t f` in [0, 1), to the rounding of one sum: the product is split
+/// exactly into its rounded value and its error (fma), and only their fractions are added. A
+/// forcing evaluated as phase0 + tau f over a step (tau from the step's start) then keeps its
+/// phase however large t is, where t f itself has lost its fraction's digits.
+pub fn turns(t: f64, f: f64) -> f64 {
+    let product = t * f;
+    let error = t.mul_add(f, -product);
+    (product.fract() + error.fract()).rem_euclid(1.0)
+}
+
 #[cfg(test)]
 mod tests {
-    use super::cos_turns;
+    use super::{cos_turns, turns};
+
+    /// Oracle: exact rational arithmetic. t = k/f + 1/8 period is an exact binary fraction
+    /// whatever k, so its phase is 1/8 turn; t f rounded in one product loses it at large k.
+    #[test]
+    fn turns_keeps_the_phase_of_large_times() {
+        let f = 4096.0;
+        for k in [0.0, 1.0, 3e9, 1e12, 4.5e14] {
+            let t = k / f + 0.125 / f;
+            assert_eq!(turns(t, f), 0.125, "k = {k}");
+        }
+        // 3000 Hz is not a power of two: against the phase computed in i128 nanosecond units.
+        let f = 3000.0;
+        for seconds in [1e5_f64, 3e5, 1e6] {
+            let t = seconds + 1.1e-4;
+            let (mantissa, exponent) = {
+                let bits = t.to_bits();
+                let e = ((bits >> 52) & 0x7ff) as i32 - 1075;
+                ((bits & ((1 << 52) - 1)) | (1 << 52), e)
+            };
+            // t f = mantissa 3000 2^exponent, exponent < 0: its fraction from integers.
+            let scaled = i128::from(mantissa) * 3000;
+            let denominator = 1i128 << (-exponent);
+            let exact = (scaled % denominator) as f64 / denominator as f64;
+            assert!(
+                (turns(t, f) - exact).abs() < 1e-15,
+                "{seconds}: {}",
+                turns(t, f)
+            );
+        }
+    }
 
     /// Oracle: libm's cos on the same phase, over a grid of phases (negative ones and many
     /// turns included).

@@ -30,8 +30,9 @@ pub struct TwoPhase {
 }
 
 impl TwoPhase {
+    /// At `t0`, the absolute time `p`'s equations count from.
     pub fn new(p: &Params, t0: f64, y: &[f64], steps_per_period: u32) -> Self {
-        let c = p.contact(t0, y);
+        let c = p.contact(0.0, y);
         TwoPhase {
             steps_per_period,
             grid_origin: t0,
@@ -63,14 +64,14 @@ impl TwoPhase {
         self.e = Vector2::new(saved[5], saved[6]);
     }
 
-    /// Steps from `t0` to `t1` on the grid `dt = 1/(f n)`, cutting the first and last step
-    /// where `t0`, `t1` fall between grid points. Accumulates the integral of FFx in `y[Q]`.
+    /// Steps from `t0` to `t1` (after the absolute time `origin`, which `p`'s and `vd`'s times
+    /// count from) on the grid `dt = 1/(f n)`, cutting the first and last step where `t0`, `t1`
+    /// fall between grid points. Accumulates the integral of FFx in `y[Q]`.
     pub fn advance(
         &mut self,
         p: &Params,
         vd: DriveVelocity,
-        t0: f64,
-        t1: f64,
+        (origin, t0, t1): (f64, f64, f64),
         y: &mut [f64],
         work: &mut Work,
     ) -> Result<(), String> {
@@ -82,14 +83,16 @@ impl TwoPhase {
                 crate::solve::MAX_STEPS_PER_DO_STEP
             ));
         }
+        // The grid in the equations' time: its origin relative to theirs.
+        let grid_origin = self.grid_origin - origin;
         let mut t = t0;
         while t < t1 {
             // The grid point after t; round-off may put (t - origin)/dt just below an integer.
-            let mut k = ((t - self.grid_origin) / dt).floor() + 1.0;
-            if self.grid_origin + k * dt <= t + 1e-9 * dt {
+            let mut k = ((t - grid_origin) / dt).floor() + 1.0;
+            if grid_origin + k * dt <= t + 1e-9 * dt {
                 k += 1.0;
             }
-            let mut next = self.grid_origin + k * dt;
+            let mut next = grid_origin + k * dt;
             if next > t1 - 1e-9 * dt {
                 next = t1;
             }
