@@ -1,6 +1,8 @@
-//! Writes `modelDescription/<Model>.xml` for every model of `src/interface` and the GUIDs (a hash
-//! of each XML) that `fmi2Instantiate` checks, so the binary and its XML can never drift apart.
-//! The XML comes from `src/model_description`, the writer the library uses for scene files.
+//! Writes, into OUT_DIR only, every model's modelDescription.xml (from `src/interface`) and the
+//! GUIDs (a hash of each XML) that `fmi2Instantiate` checks, so the binary and its XML can never
+//! drift apart. The XML comes from `src/model_description`, the writer the library uses for
+//! scene files. `friction-fmu build` copies the XML to `modelDescription/`, where a test checks
+//! that the committed copy is current.
 
 #[allow(dead_code)]
 #[path = "src/interface/mod.rs"]
@@ -26,21 +28,12 @@ fn main() {
     println!("cargo:rerun-if-changed=src/interface");
     println!("cargo:rerun-if-changed=src/model_description");
     println!("cargo:rerun-if-changed=build.rs");
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let out_dir = std::env::var("OUT_DIR").expect("cargo sets OUT_DIR");
-    std::fs::create_dir_all(root.join("modelDescription"))
-        .expect("modelDescription/ can be created");
     let mut guids = String::from("/// GUID of each model: a hash of its modelDescription.xml.\npub const GUIDS: &[(&str, &str)] = &[\n");
     let mut xmls = String::from("/// Each model's modelDescription.xml, as packed into its FMU.\npub const XMLS: &[(&str, &str)] = &[\n");
     for table in interface::MODELS {
         let variables: Vec<&Variable> = table.variables.iter().collect();
         let (guid, xml) = Interface::full(table, &variables).write();
-        write_if_changed(
-            &root
-                .join("modelDescription")
-                .join(format!("{}.xml", table.model_identifier)),
-            &xml,
-        );
         let _ = writeln!(guids, "    ({:?}, {:?}),", table.model_identifier, guid);
         let _ = writeln!(xmls, "    ({:?}, {:?}),", table.model_identifier, xml);
     }

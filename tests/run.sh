@@ -37,14 +37,15 @@ echo "== cargo fmt --check"
 cargo fmt --check
 echo "== cargo clippy"
 cargo clippy --all-targets --release -- -D warnings
+echo "== cargo test"
+# The testing profile (Cargo.toml) builds in target/testing: the main command's target/release is
+# left as it is, so neither rebuilds the other. Before the build below, which refreshes
+# modelDescription/: a test checks the committed copy.
+cargo test --profile testing
 echo "== building the FMUs"
 cargo build --release
 target/release/friction-fmu build
 target/release/friction-fmu build scenes/*.toml --out fmu-out/scenes
-echo "== cargo test"
-# The testing profile (Cargo.toml) builds in target/testing: the main command's target/release is
-# left as it is, so neither rebuilds the other.
-cargo test --profile testing
 echo "== fuzzing under valgrind memcheck (invalid reads and writes, use after free)"
 FUZZ_BIN=$(cargo test --profile testing --test fuzz_calls --no-run 2>&1 | grep -o 'target/testing/deps/fuzz_calls-[0-9a-f]*' | head -1)
 FUZZ_SEQUENCES=20000 valgrind --error-exitcode=9 --leak-check=no -q "$FUZZ_BIN" random_call_sequences

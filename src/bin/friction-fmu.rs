@@ -72,6 +72,11 @@ fn build(out: &Path, libraries: &[package::Library]) -> Result<(), String> {
     }
     let path = package::ssp::write(out).map_err(|e| format!("packing the system: {e}"))?;
     println!("wrote {}", path.display());
+    for path in package::refresh_committed_xml()
+        .map_err(|e| format!("{}: {e}", package::COMMITTED_XML_DIR))?
+    {
+        println!("wrote {}", path.display());
+    }
     Ok(())
 }
 

@@ -295,8 +295,8 @@ mod tests {
     use super::Interface;
     use crate::interface::variable::Variable;
 
-    /// Oracle: the XML and GUID `build.rs` wrote (committed in modelDescription/): the library's
-    /// writer, which also writes scene files, gives the same bytes for a whole table.
+    /// Oracle: the XML and GUID `build.rs` wrote into OUT_DIR: the library's writer, which also
+    /// writes scene files, gives the same bytes for a whole table.
     #[test]
     fn library_writes_the_full_models_as_the_build_script_did() {
         for table in crate::interface::MODELS {
@@ -305,6 +305,21 @@ mod tests {
             let id = table.model_identifier;
             assert_eq!(Some(xml.as_str()), crate::package::model_description(id));
             assert_eq!(Some(guid.as_str()), crate::fmi2::guid(id));
+        }
+    }
+
+    /// The committed modelDescription/ is what this build packs: an interface changed without
+    /// `friction-fmu build` (which refreshes the copies) fails here, naming the file.
+    #[test]
+    fn committed_model_descriptions_are_current() {
+        for table in crate::interface::MODELS {
+            let id = table.model_identifier;
+            let path = format!("{}/{id}.xml", crate::package::COMMITTED_XML_DIR);
+            let committed = std::fs::read_to_string(&path).unwrap_or_default();
+            assert!(
+                Some(committed.as_str()) == crate::package::model_description(id),
+                "{path} is not this build's modelDescription.xml: run `cargo run --release -- build` and commit it"
+            );
         }
     }
 }

@@ -56,6 +56,28 @@ pub fn model_description(model_identifier: &str) -> Option<&'static str> {
         .map(|(_, xml)| *xml)
 }
 
+/// The source tree's copy of every model's modelDescription.xml (committed, so that interface
+/// changes show in diffs).
+pub const COMMITTED_XML_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/modelDescription");
+
+/// Refreshes the committed copies in [`COMMITTED_XML_DIR`] when run from the source tree (the
+/// directory exists); returns the files it rewrote.
+pub fn refresh_committed_xml() -> io::Result<Vec<PathBuf>> {
+    let dir = Path::new(COMMITTED_XML_DIR);
+    let mut written = Vec::new();
+    if !dir.is_dir() {
+        return Ok(written);
+    }
+    for (id, xml) in XMLS {
+        let path = dir.join(format!("{id}.xml"));
+        if std::fs::read_to_string(&path).ok().as_deref() != Some(*xml) {
+            std::fs::write(&path, xml)?;
+            written.push(path);
+        }
+    }
+    Ok(written)
+}
+
 /// What one FMU holds besides the library.
 struct Contents<'a> {
     model_identifier: &'a str,
