@@ -60,8 +60,8 @@ impl Solver {
         values: &ValueSet,
         law: Law,
         fc: f64,
-        f: f64,
-        steps_per_period: u32,
+        (f, steps_per_period): (f64, u32),
+        slip_per_period: f64,
     ) -> Result<Self, String> {
         let name = values.item(vr::SOLVER);
         if name == "exponential" {
@@ -78,14 +78,20 @@ impl Solver {
                 "tolerance = {rtol} is out of range: expected 1e-14 <= tolerance <= 0.01"
             ));
         }
-        // Absolute tolerances on the scale of each state: the deflection FC/kt at saturation and
-        // the force integral over a period, FC/f.
+        // Absolute tolerances on the scale of each state: the deflection, FC/kt at saturation or
+        // the distance slid in a period if that is less (a heavy body on a soft contact never
+        // nears saturation, and FC/kt would loosen the control by FC over the forces met), and
+        // the force integral over a period, the spring force of that deflection over 1/f.
         let kt = match law {
             Law::Dahl(d) => d.kt,
             Law::LuGre(l) => l.sigma0,
             Law::Coulomb => 1.0,
         };
-        let (z_scale, q_scale) = (fc / kt, fc / f);
+        let z_scale = (fc / kt).min(slip_per_period);
+        let q_scale = match law {
+            Law::Coulomb => fc / f,
+            _ => kt * z_scale / f,
+        };
         // The work w is left out of the error control (an infinite atol): the steps the
         // deflection needs integrate it to the same order.
         Ok(if name == "radau5" {
