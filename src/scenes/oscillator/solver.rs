@@ -79,7 +79,7 @@ impl Solver {
         work: &mut Work,
     ) -> Result<(), String> {
         match self {
-            Solver::Radau5(r) => r.integrate(equations, t0, t1, y, work),
+            Solver::Radau5(r) => r.integrate_switched(equations, t0, t1, y, work),
             Solver::Dopri5(d) => d.integrate_switched(equations, t0, t1, y, work),
             Solver::Rk4(r) => r.integrate(equations, t0, t1, y, work),
         }
