@@ -39,18 +39,19 @@ echo "== cargo clippy"
 cargo clippy --all-targets --release -- -D warnings
 echo "== cargo test"
 # The testing profile (Cargo.toml) builds in target/testing: the main command's target/release is
-# left as it is, so neither rebuilds the other. Before the build below, which refreshes
-# modelDescription/: a test checks the committed copy.
+# left as it is, so neither rebuilds the other. It also builds the friction-fmu command, which
+# packs the FMUs below (the release build would compile everything again, with fat LTO). Before
+# that packing, which refreshes modelDescription/: a test checks the committed copy.
 cargo test --profile testing
-echo "== building the FMUs"
-cargo build --release
-target/release/friction-fmu build
-target/release/friction-fmu build scenes/*.toml --out fmu-out/scenes
+BIN=target/testing/friction-fmu
 echo "== fuzzing under valgrind memcheck (invalid reads and writes, use after free)"
 FUZZ_BIN=$(cargo test --profile testing --test fuzz_calls --no-run 2>&1 | grep -o 'target/testing/deps/fuzz_calls-[0-9a-f]*' | head -1)
 FUZZ_SEQUENCES=20000 valgrind --error-exitcode=9 --leak-check=no -q "$FUZZ_BIN" random_call_sequences
+echo "== packing the FMUs"
+$BIN build
+$BIN build scenes/*.toml --out fmu-out/scenes
 echo "== pytest (fmpy, libcosim, ecos, the C host natively and under wine)"
 # wine's prefix outside the source tree: cargo scans the package directory, and the prefix links
 # to /.
 export WINEPREFIX="${WINEPREFIX:-$HOME/.wine-friction-fmu}" WINEDEBUG=-all WINEDLLOVERRIDES="mscoree,mshtml="
-.venv/bin/python -m pytest tests/python
+FRICTION_FMU_BIN=$BIN .venv/bin/python -m pytest tests/python

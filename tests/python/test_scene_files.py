@@ -6,6 +6,7 @@ with a message.
 Oracles: the scene files themselves (read here with tomllib, independently of the Rust parser)
 and the full FMUs in fmu-out/ run with the same values.
 """
+import os
 import pathlib
 import subprocess
 import tomllib
@@ -20,7 +21,8 @@ import conftest
 from conftest import ROOT, Slave, fmu_path
 from friction_fmu import switches
 
-BINARY = ROOT / "target" / "release" / "friction-fmu"
+# The command the FMUs were packed with: tests/run.sh names the one its cargo test built.
+BINARY = pathlib.Path(os.environ.get("FRICTION_FMU_BIN", ROOT / "target" / "release" / "friction-fmu"))
 SCENES = sorted((ROOT / "scenes").glob("*.toml"))
 LAW_PARAMETER = {"LongitudinalFriction": "law", "TransverseFriction": "slip_law",
                  "DryFrictionOscillator": "law"}
