@@ -473,3 +473,23 @@ fn radau5_resolves_a_narrow_stiction_band() {
     assert!((a / amplitude - 1.0).abs() < 1e-7, "{a} vs {amplitude}");
     assert!((w / work - 1.0).abs() < 1e-5, "{w} vs {work}");
 }
+
+/// linear_stiction's band below 1e-8 m/s is not resolved to the tolerance (its anti-damped
+/// falling branch): the first step says so, once; a wider band says nothing.
+#[test]
+fn an_unresolved_linear_stiction_band_is_said_once() {
+    for (d, warned) in [(1e-9, true), (1e-6, false)] {
+        let mut v = with_solver("linear_stiction", "radau5");
+        v.set(vr::D, d);
+        v.set(vr::DA, d);
+        let mut scene = Oscillator::new(&v, 0.0).unwrap();
+        scene.step_logged(TAU / 16.0, 0.0, None).unwrap();
+        let first = scene.take_warning();
+        assert_eq!(first.is_some(), warned, "{first:?}");
+        if warned {
+            assert!(first.unwrap().contains("not accurate to the tolerance"));
+            scene.step_logged(TAU / 16.0, 0.0, None).unwrap();
+            assert!(scene.take_warning().is_none());
+        }
+    }
+}
