@@ -4,6 +4,7 @@ A misspelt name, switch item or number would fail every point the same way (or, 
 heat map axis, fail after the whole sweep has run): each is refused here with a one-line
 ValueError saying what was given and what was expected.
 """
+import argparse
 import math
 import zipfile
 
@@ -171,3 +172,14 @@ def _unit(var):
 
 def _is_number(value):
     return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def positive_seconds(text):
+    """An argparse type: a finite number of seconds > 0, or a one-line refusal."""
+    try:
+        seconds = float(text)
+    except ValueError:
+        seconds = math.nan
+    if not (math.isfinite(seconds) and seconds > 0):
+        raise argparse.ArgumentTypeError(f"{text!r}: expected a finite number of seconds > 0")
+    return seconds

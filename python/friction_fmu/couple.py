@@ -322,7 +322,7 @@ class _Parser(argparse.ArgumentParser):
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
         # argparse takes "--step -1e-4" for an option named -1e-4 ("expected one argument"):
-        # every number, exponent included, is a value, refused by _seconds with its reason
+        # every number, exponent included, is a value, refused by check.positive_seconds with its reason
         self._negative_number_matcher = re.compile(
             r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE)
 
@@ -331,22 +331,13 @@ class _Parser(argparse.ArgumentParser):
         raise ValueError(f"{message} (see --help)")
 
 
-def _seconds(text):
-    try:
-        seconds = float(text)
-    except ValueError:
-        seconds = math.nan
-    if not (math.isfinite(seconds) and seconds > 0):
-        raise argparse.ArgumentTypeError(f"{text!r}: expected a finite number of seconds > 0")
-    return seconds
-
 
 def parse_args(argv):
     p = _Parser(prog="python -m friction_fmu.couple", description=__doc__,
                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--step", type=_seconds, default=STEP, metavar="H",
+    p.add_argument("--step", type=check.positive_seconds, default=STEP, metavar="H",
                    help=f"communication step in s (default {STEP:g})")
-    p.add_argument("--stop-time", type=_seconds, default=STOP_TIME, metavar="T",
+    p.add_argument("--stop-time", type=check.positive_seconds, default=STOP_TIME, metavar="T",
                    help=f"stop time in s, a whole number of steps (default {STOP_TIME:g})")
     inputs = p.add_mutually_exclusive_group()
     inputs.add_argument("--derivatives", dest="derivatives", action="store_true", default=True,

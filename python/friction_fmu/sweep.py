@@ -18,7 +18,6 @@ import concurrent.futures as cf
 import contextlib
 import csv
 import json
-import math
 import os
 import pathlib
 import sys
@@ -215,15 +214,6 @@ def _count(text):
     return int(text)
 
 
-def _seconds(text):
-    try:
-        seconds = float(text)
-    except ValueError:
-        seconds = math.nan
-    if not (math.isfinite(seconds) and seconds > 0):
-        raise argparse.ArgumentTypeError(f"{text!r}: expected a number of seconds > 0")
-    return seconds
-
 
 def parse_args(argv):
     p = _Parser(prog="python -m friction_fmu.sweep", description=__doc__,
@@ -245,7 +235,7 @@ def parse_args(argv):
     p.add_argument("--scheduler", help="Dask: local[:N] starts a LocalCluster of N workers "
                                        "(default: os.cpu_count()), or a scheduler address, "
                                        "e.g. tcp://host:8786")
-    p.add_argument("--connect-timeout", type=_seconds, default=CONNECT_TIMEOUT,
+    p.add_argument("--connect-timeout", type=check.positive_seconds, default=CONNECT_TIMEOUT,
                    metavar="SECONDS", help="how long to wait for the Dask scheduler "
                                            f"(default {CONNECT_TIMEOUT:g})")
     p.add_argument("--ship", choices=["bytes", "path"],

@@ -394,7 +394,7 @@ def test_scheduler_that_does_not_answer_is_refused(tmp_path, capsys):
     (["--scheduler", "local:0"], "--scheduler local:0: expected local or local:N, N >= 1"),
     (["--scheduler", "local:two"], "--scheduler local:two: expected local or local:N"),
     (["--scheduler", "local:2", "--workers", "2"], "--workers sizes the local process pool"),
-    (["--connect-timeout", "nan"], "argument --connect-timeout: 'nan': expected a number of "
+    (["--connect-timeout", "nan"], "argument --connect-timeout: 'nan': expected a finite number of "
                                    "seconds > 0"),
 ])
 def test_scheduler_arguments_are_checked(tmp_path, capsys, extra, said):

@@ -10,12 +10,7 @@ fn values(solver: &str, slip: &str) -> ValueSet {
 }
 
 pub(super) fn mean_after(v: &ValueSet, periods: u32) -> f64 {
-    let mut scene = Transverse::new(v, 0.0).unwrap();
-    let period = 1.0 / v.real(vr::F);
-    for _ in 0..periods {
-        scene.do_step(period, v).unwrap();
-    }
-    scene.mean_ffx()
+    mean_from(v, 0.0, periods)
 }
 
 /// Bad parameters are refused with a message naming the variable and the expected range.
@@ -481,7 +476,7 @@ fn the_total_laws_slip_rate_taken_at_the_steps_middle_gains_accuracy() {
     }
 }
 
-/// FFx_mean after `periods` periods of `h` from `t0`.
+/// FFx_mean after `periods` periods from `t0`.
 fn mean_from(v: &ValueSet, t0: f64, periods: u32) -> f64 {
     let mut scene = Transverse::new(v, t0).unwrap();
     let period = 1.0 / v.real(vr::F);
