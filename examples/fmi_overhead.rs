@@ -1,13 +1,13 @@
 //! What the FMI layer costs per doStep: each model at its defaults is advanced over the same
-//! interval (a) through the exported fmi2DoStep (in-process, src/fmi2/driver.rs) in
+//! interval (a) through the exported fmi2DoStep (in-process, src/importer.rs) in
 //! communication steps of 1e-5 s, (b) by calling the scene directly with the same steps, and
 //! (c) by calling the scene once per vibration (forcing) period (or once, for a shorter interval). (a) - (b) is the FMI layer per
 //! call; (b) - (c) is what restarting the integrator at every communication point costs.
 //!
 //!   cargo run --release --example fmi_overhead [SECONDS]     (simulated time, default 0.05 s)
 
-use friction_fmu::fmi2::driver::Instance;
 use friction_fmu::fmi2::ffi::Status;
+use friction_fmu::importer::Instance;
 use friction_fmu::interface::values::ValueSet;
 use friction_fmu::scenes::{Model, Scope, MODELS};
 use std::time::Instant;

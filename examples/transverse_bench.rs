@@ -6,9 +6,9 @@
 //!
 //! KNOB is a tolerance for dopri5/radau5 and steps per period for rk4/two_phase/exponential. Output:
 //! `slip_law,kt_factor,solver,knob,FFx_mean,cpu_seconds,rhs_evaluations,steps,rejected`.
-//! The clock is the CPU time of the running thread (`fmi2::cpu_clock`).
+//! The clock is the CPU time of the running thread (`cpu_clock`).
 
-use friction_fmu::fmi2::cpu_clock::time_cpu;
+use friction_fmu::cpu_clock::time_cpu;
 use friction_fmu::interface::transverse::{vr, INITIAL, SLIP_LAW, SOLVER, TABLE};
 use friction_fmu::interface::values::ValueSet;
 use friction_fmu::scenes::transverse::Transverse;

@@ -3,8 +3,16 @@
 //! Data flows one way: parameters ([`interface`]) -> friction law ([`friction`]) + scene
 //! equations ([`scenes`]) -> outputs -> the FMI getters ([`fmi2`], the only `unsafe` code).
 
+// Only the FMI boundary (src/fmi2), the in-process importer that calls it and the CPU clock use
+// `unsafe`: each module that does is allowed it by name.
+#![deny(unsafe_code)]
+
+#[allow(unsafe_code)]
+pub mod cpu_clock;
 pub mod fmi2;
 pub mod friction;
+#[allow(unsafe_code)]
+pub mod importer;
 pub mod interface;
 pub mod model_description;
 pub mod package;

@@ -21,11 +21,11 @@
     any(target_arch = "x86_64", target_arch = "aarch64")
 ))]
 
-use friction_fmu::fmi2::driver::{
+use friction_fmu::fmi2::ffi::Status;
+use friction_fmu::importer::{
     calls_on_null_component, free_null_instance, types_platform, version, Instance, Instantiation,
     NullArgument, State,
 };
-use friction_fmu::fmi2::ffi::Status;
 use friction_fmu::interface::values::check_value;
 use friction_fmu::interface::variable::{Causality, Kind, ModelTable, Variable};
 use friction_fmu::interface::MODELS;

@@ -1,7 +1,7 @@
 //! A co-simulation step never allocates: fmi2SetReal (inputs), fmi2SetRealInputDerivatives,
 //! fmi2DoStep and fmi2GetReal (outputs), for every model and every solver, every scene file's
 //! trimmed FMU, inputs moving linearly over a step, and a master that changes its step size,
-//! driven through the exported fmi2* functions in-process (src/fmi2/driver.rs) with a
+//! driven through the exported fmi2* functions in-process (src/importer.rs) with a
 //! per-thread counting allocator around them.
 //!
 //! Oracle: the allocator's count; zero is the contract (src/solve/mod.rs: integrators keep their
@@ -12,8 +12,8 @@
     any(target_arch = "x86_64", target_arch = "aarch64")
 ))]
 
-use friction_fmu::fmi2::driver::{Instance, Instantiation};
 use friction_fmu::fmi2::ffi::Status;
+use friction_fmu::importer::{Instance, Instantiation};
 use friction_fmu::interface::variable::{Causality, Kind, ModelTable, Variable};
 use friction_fmu::interface::{drive, transverse};
 use friction_fmu::scene_file;

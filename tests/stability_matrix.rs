@@ -13,8 +13,8 @@
     any(target_arch = "x86_64", target_arch = "aarch64")
 ))]
 
-use friction_fmu::fmi2::driver::Instance;
 use friction_fmu::fmi2::ffi::Status;
+use friction_fmu::importer::Instance;
 use friction_fmu::report::stability::{self, Outcome, Value};
 use friction_fmu::scenes::model;
 

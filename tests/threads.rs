@@ -10,8 +10,8 @@
     any(target_arch = "x86_64", target_arch = "aarch64")
 ))]
 
-use friction_fmu::fmi2::driver::Instance;
 use friction_fmu::fmi2::ffi::Status;
+use friction_fmu::importer::Instance;
 use friction_fmu::interface::variable::{Causality, Kind, ModelTable};
 use friction_fmu::interface::{drive, longitudinal, oscillator, transverse, MODELS};
 use std::sync::Barrier;

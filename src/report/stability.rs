@@ -1,6 +1,6 @@
 //! The stability matrix (stiff and extreme cases): every
 //! solver of every scene against each extreme the scene has a parameter for, run through the
-//! exported fmi2* functions as a master would (src/fmi2/driver.rs), with the outcome of each run.
+//! exported fmi2* functions as a master would (src/importer.rs), with the outcome of each run.
 //!
 //! Each case is short (a few periods, or a few thousand communication steps); the long run is
 //! 1e6 vibration periods in scene L (at 1 Hz, communication steps of 1e4 periods, coarse

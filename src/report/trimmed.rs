@@ -249,7 +249,7 @@ fn median(mut x: Vec<f64>) -> f64 {
 /// The CPU time this thread has run, so the time other processes take the core from it does not
 /// count; elsewhere the wall clock since `origin`.
 fn cpu_seconds(origin: Instant) -> f64 {
-    crate::fmi2::cpu_clock::thread_cpu_seconds().unwrap_or_else(|| origin.elapsed().as_secs_f64())
+    crate::cpu_clock::thread_cpu_seconds().unwrap_or_else(|| origin.elapsed().as_secs_f64())
 }
 
 /// Each timed sample repeats the run for at least this long and divides, so one sample does not

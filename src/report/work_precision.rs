@@ -9,7 +9,7 @@
 
 use super::progress::Progress;
 use super::svg::{Plot, Series};
-use crate::fmi2::cpu_clock::time_cpu;
+use crate::cpu_clock::time_cpu;
 use crate::solve::Work;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

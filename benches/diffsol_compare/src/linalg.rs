@@ -1,7 +1,7 @@
 //! Our fixed-size LU (src/solve/dense.rs) and expm (src/solve/expm.rs) against nalgebra 0.33's
 //! LU and `Matrix::exp` at the sizes the integrators use.
 
-use friction_fmu::fmi2::cpu_clock::time_cpu;
+use friction_fmu::cpu_clock::time_cpu;
 use friction_fmu::solve::dense::{lu_factor, lu_solve};
 use friction_fmu::solve::expm::{expm, Matrix};
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};

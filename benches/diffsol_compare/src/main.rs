@@ -7,7 +7,7 @@ mod linalg;
 mod run;
 
 use cases::Case;
-use friction_fmu::fmi2::cpu_clock::time_cpu;
+use friction_fmu::cpu_clock::time_cpu;
 use friction_fmu::scenes::transverse::{self, Transverse};
 use friction_fmu::scenes::Scene;
 use run::{run, Method, Run};

@@ -1,8 +1,8 @@
 //! Runs one case of the stability matrix through the in-process FMI driver and judges it.
 
 use super::{Case, Value};
-use crate::fmi2::driver::Instance;
 use crate::fmi2::ffi::Status;
+use crate::importer::Instance;
 use crate::interface::variable::{Causality, Kind, ModelTable};
 use std::time::Instant;
 

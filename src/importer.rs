@@ -1,8 +1,8 @@
 //! A safe, in-process FMI 2.0 importer: calls this crate's exported `fmi2*` functions directly,
 //! the way a co-simulation master calls them through `dlsym`, without loading a shared library.
 //!
-//! It exists so that tests, fuzzers and benchmarks can drive an FMU from safe code (the crate
-//! keeps every `unsafe` in `src/fmi2/`). Each [`Instance`] owns one FMU instance and the log of
+//! It exists so that tests, fuzzers and benchmarks can drive an FMU from safe code (its own
+//! `unsafe` is the calls into `src/fmi2/`, which validates every pointer). Each [`Instance`] owns one FMU instance and the log of
 //! the messages that instance sent to its logger; `&mut self` on every call gives the FMI rule
 //! "one instance is never called from two threads at once" for free.
 //!
@@ -19,9 +19,9 @@
     any(target_arch = "x86_64", target_arch = "aarch64")
 ))]
 
-use super::binary::Binary;
-use super::exports::*;
-use super::ffi::{self, CallbackFunctions, CallbackLogger, FmuState, Status};
+use crate::fmi2::binary::Binary;
+use crate::fmi2::exports::*;
+use crate::fmi2::ffi::{self, CallbackFunctions, CallbackLogger, FmuState, Status};
 use std::ffi::{c_char, c_int, c_void, CStr, CString};
 use std::sync::{Mutex, MutexGuard};
 
@@ -193,7 +193,7 @@ impl Instantiation {
         Some(Instantiation {
             instance_name: Some(instance_name.to_string()),
             fmu_type: ffi::CO_SIMULATION,
-            guid: Some(super::guid(model_identifier)?.to_string()),
+            guid: Some(crate::fmi2::guid(model_identifier)?.to_string()),
             resource_location: None,
             logging_on: false,
         })

@@ -1,8 +1,6 @@
 //! The CPU time of the calling thread, for the benchmarks and the report's timings: unlike the
 //! wall clock it does not count the time other processes on a shared machine take the core.
-//!
-//! It sits in src/fmi2 only because this is the crate's one module allowed `unsafe` (the libc
-//! call); nothing of FMI depends on it.
+//! It calls the C library, so it is one of the few modules allowed `unsafe` (src/lib.rs).
 
 /// Seconds of CPU time this thread has used (`CLOCK_THREAD_CPUTIME_ID`, nanosecond resolution
 /// on Linux); None where the clock is not available.
