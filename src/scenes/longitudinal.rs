@@ -104,10 +104,6 @@ fn displacement(source: Velocity, clock: Clock, held: f64, t0: f64, t: f64) -> f
     }
 }
 
-/// The accuracy a fixed-step solver's readings are held to for [`super::clock_warning`] (it has
-/// no tolerance; its error is set by steps_per_period).
-const FIXED_STEP_ACCURACY: f64 = 1e-9;
-
 pub fn build(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Box<dyn Scene>, String> {
     Ok(Box::new(Longitudinal::with_scope(
         values, start_time, scope,
@@ -496,7 +492,7 @@ impl Scene for Longitudinal {
     fn reading_period(&self) -> Option<(f64, f64)> {
         Some((
             1.0 / self.f,
-            self.solver.rtol().unwrap_or(FIXED_STEP_ACCURACY),
+            self.solver.rtol().unwrap_or(super::FIXED_STEP_ACCURACY),
         ))
     }
 

@@ -101,6 +101,10 @@ pub fn within_round_off(start: f64, end: f64) -> bool {
     end - start <= 16.0 * f64::EPSILON * start.abs().max(end.abs())
 }
 
+/// The accuracy a fixed-step solver's period readings are held to for [`clock_warning`] (it has
+/// no tolerance; its error is set by steps_per_period).
+pub const FIXED_STEP_ACCURACY: f64 = 1e-9;
+
 /// Why a scene without input derivatives refuses one.
 pub const HELD_INPUTS: &str =
     "this model holds its inputs over each step (canInterpolateInputs = false)";

@@ -144,9 +144,8 @@ impl PeriodMax {
         self.start_time + (self.completed + 1) as f64 * self.period
     }
 
-    /// As [`super::period_mean::PeriodMean::slack`].
     fn slack(&self, t: f64) -> f64 {
-        (1e-9 * self.period).max(4.0 * f64::EPSILON * t.abs())
+        super::period_mean::slack(self.period, t)
     }
 
     /// Adds the largest |u| of a sub-interval ending at t_end (where |u| = `at_end`).

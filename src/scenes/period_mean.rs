@@ -5,6 +5,13 @@
 //! however long the run. A solver must end a sub-step on [`PeriodMean::next_boundary`] and call
 //! [`PeriodMean::add`] with each sub-step's integral.
 
+/// How close to the boundary of a `period` a time at `t` counts as on it: a billionth of the
+/// period (the round-off of a master's clock), or, far from t = 0, four ulps of t, since a
+/// master's clock rounds by that much there.
+pub fn slack(period: f64, t: f64) -> f64 {
+    (1e-9 * period).max(4.0 * f64::EPSILON * t.abs())
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct PeriodMean {
     start_time: f64,
@@ -30,11 +37,9 @@ impl PeriodMean {
         self.start_time + (self.completed + 1) as f64 * self.period
     }
 
-    /// How close to a boundary a time at `t` counts as on it: a billionth of a period (the
-    /// round-off of a master's clock), or, far from t = 0, four ulps of t, since a master's
-    /// clock rounds by that much there.
+    /// See [`slack`].
     pub fn slack(&self, t: f64) -> f64 {
-        (1e-9 * self.period).max(4.0 * f64::EPSILON * t.abs())
+        slack(self.period, t)
     }
 
     /// Adds the integral over a sub-step ending at `t_end`; closes the period when `t_end` is on

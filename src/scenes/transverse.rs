@@ -823,8 +823,10 @@ impl Scene for Transverse {
     }
 
     fn reading_period(&self) -> Option<(f64, f64)> {
-        // A fixed-step solver has no tolerance; its error is set by steps_per_period.
-        Some((1.0 / self.p.f, self.solver.rtol().unwrap_or(1e-9)))
+        Some((
+            1.0 / self.p.f,
+            self.solver.rtol().unwrap_or(super::FIXED_STEP_ACCURACY),
+        ))
     }
 
     fn save_into(&self, out: &mut Vec<f64>) {
