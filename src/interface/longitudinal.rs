@@ -10,6 +10,7 @@ use super::variable::{DefaultExperiment, EnumType, InputSwitch, ModelTable, Vari
 pub mod vr {
     pub const LAW: u32 = 1;
     pub const VELOCITY_SOURCE: u32 = 2;
+    pub const NORMAL_FORCE_SOURCE: u32 = 6;
     pub const SOLVER: u32 = 3;
     pub const STEPS_PER_PERIOD: u32 = 4;
     pub const TOLERANCE: u32 = 5;
@@ -26,6 +27,7 @@ pub mod vr {
     pub const SIGMA1: u32 = 20;
     pub const SIGMA2: u32 = 21;
     pub const VR_IN: u32 = 30;
+    pub const FN_IN: u32 = 31;
     pub const FT: u32 = 40;
     pub const Z: u32 = 41;
     pub const VR: u32 = 42;
@@ -55,7 +57,21 @@ pub const VELOCITY_SOURCE: EnumType = EnumType {
     name: "VelocitySource",
     items: &[
         ("prescribed", "vr = vc + va cos(2 pi f t) (eq. 2.4)"),
-        ("input", "vr = vr_in, held over each communication step"),
+        (
+            "input",
+            "vr = vr_in, held over each communication step, or moving at the derivative set for it",
+        ),
+    ],
+};
+
+pub const NORMAL_FORCE_SOURCE: EnumType = EnumType {
+    name: "NormalForceSource",
+    items: &[
+        ("weight", "FN = m g: FC = mu m g and the LuGre FS as given"),
+        (
+            "input",
+            "FN = FN_in, held over each communication step, or moving at the derivative set for it; FC = mu FN, and FS scales with FN / (m g)",
+        ),
     ],
 };
 
@@ -90,13 +106,20 @@ const VARIABLES: &[Variable] = &[
         VELOCITY_SOURCE.name,
         1,
     ),
+    enum_parameter(
+        "normal_force_source",
+        vr::NORMAL_FORCE_SOURCE,
+        "Where the normal force comes from",
+        NORMAL_FORCE_SOURCE.name,
+        1,
+    ),
     // dopri5 (item 3): the fastest to reach a relative error of 1e-6 in the work-precision
     // report (`friction-fmu report`, report/longitudinal.md).
     enum_parameter("solver", vr::SOLVER, "Integration scheme", SOLVER.name, 3),
     integer_parameter(
         "steps_per_period",
         vr::STEPS_PER_PERIOD,
-        "Sub-steps per vibration period for the prescribed velocity",
+        "Sub-steps per vibration period 1/f of the fixed-step solvers (exponential, rk4) over a prescribed or moving input",
         2000,
         4,
         10_000_000,
@@ -225,12 +248,19 @@ const VARIABLES: &[Variable] = &[
         0.0,
         "m/s",
     ),
+    real_input(
+        "FN_in",
+        vr::FN_IN,
+        "Normal force when normal_force_source = input (> 0)",
+        0.1962,
+        "N",
+    ),
     real_output(
         "FT",
         vr::FT,
         "Friction force, positive when it resists +x sliding",
         "N",
-        &[vr::VR_IN],
+        &[vr::VR_IN, vr::FN_IN],
     ),
     real_output(
         "z",
@@ -250,7 +280,7 @@ const VARIABLES: &[Variable] = &[
     real_output(
         "S",
         vr::S,
-        "Reduction of the mean friction force, (1 - FT_mean/FC)*100 (eq. 3.3)",
+        "Reduction of the mean friction force, (1 - FT_mean/FC)*100 (eq. 3.3); with the normal force an input, FC is mu times its mean over the same period",
         "%",
         &[],
     ),
@@ -267,12 +297,19 @@ pub const TABLE: ModelTable = ModelTable {
     model_identifier: "LongitudinalFriction",
     description: "Sliding friction under longitudinal tangential contact vibration: Coulomb, Dahl and LuGre (Leus & Gutowski 2008)",
     variables: VARIABLES,
-    enum_types: &[LAW, VELOCITY_SOURCE, SOLVER],
-    input_switches: &[InputSwitch {
-        switch: "velocity_source",
-        item: "input",
-        input: "vr_in",
-    }],
+    enum_types: &[LAW, VELOCITY_SOURCE, NORMAL_FORCE_SOURCE, SOLVER],
+    input_switches: &[
+        InputSwitch {
+            switch: "velocity_source",
+            item: "input",
+            input: "vr_in",
+        },
+        InputSwitch {
+            switch: "normal_force_source",
+            item: "input",
+            input: "FN_in",
+        },
+    ],
     default_experiment: DefaultExperiment {
         start_time: 0.0,
         // 42 vibration periods at 60 kHz, reported every microsecond (a whole number of

@@ -24,7 +24,7 @@ pub const MODELS: &[&variable::ModelTable] = &[
 /// first order) and that give first derivatives of some outputs: modelDescription.xml declares
 /// canInterpolateInputs and maxOutputDerivativeOrder = 1 for them. The scenes' own
 /// `set_input_derivative` is the runtime side of the same promise.
-pub const INTERPOLATING: &[&str] = &["TransverseFriction", "DriveTrain"];
+pub const INTERPOLATING: &[&str] = &["LongitudinalFriction", "TransverseFriction", "DriveTrain"];
 
 pub fn interpolates_inputs(table: &variable::ModelTable) -> bool {
     INTERPOLATING.contains(&table.model_identifier)

@@ -11,6 +11,11 @@
 //! ([`Longitudinal::ode_dim`]). A Dahl bristle with alpha < 1 saturates after a finite sliding
 //! distance, where its rate is not Lipschitz: they stop there and hold it, in closed form
 //! ([`Longitudinal::saturation`]).
+//!
+//! As a part of a drive system the velocity and the normal force can be inputs, each held over a
+//! communication step or moving linearly at the derivative the master sets for it
+//! ([`Ramp`]). The normal force scales the law's force levels: FC = mu FN, and LuGre's FS with
+//! FN / (m g).
 
 mod ode;
 
@@ -31,12 +36,65 @@ pub enum Law {
     LuGre(LuGre),
 }
 
+impl Law {
+    /// The law under a normal force `scale` times the weight's: its force levels scale with it.
+    fn loaded(self, scale: f64) -> Law {
+        match self {
+            Law::Coulomb => Law::Coulomb,
+            Law::Dahl(d) => Law::Dahl(Dahl {
+                fc: d.fc * scale,
+                ..d
+            }),
+            Law::LuGre(l) => Law::LuGre(LuGre {
+                fc: l.fc * scale,
+                fs: l.fs * scale,
+                ..l
+            }),
+        }
+    }
+}
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Velocity {
     /// vr = vc + va cos(2 pi f t)
     Prescribed { vc: f64, va: f64 },
-    /// vr = vr_in, held over each step
+    /// vr = vr_in over each step ([`Ramp`])
     Input,
+}
+
+/// An input over the step under way, on the equations' time (0 at the step's start): its value
+/// there, and the rate the master set for the step (0: held).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Ramp {
+    value: f64,
+    rate: f64,
+}
+
+impl Ramp {
+    fn at(self, t: f64) -> f64 {
+        self.value + self.rate * t
+    }
+
+    /// The integral over `[t0, t1]`.
+    fn integral(self, t0: f64, t1: f64) -> f64 {
+        (t1 - t0) * self.at(0.5 * (t0 + t1))
+    }
+
+    /// Where the input crosses zero, if it moves.
+    fn zero(self) -> Option<f64> {
+        (self.rate != 0.0).then(|| -self.value / self.rate)
+    }
+
+    /// The value and rate as read from `value`, the rate taken for one step.
+    fn checked(name: &str, value: f64, rate: f64) -> Result<Ramp, String> {
+        if value.is_finite() && rate.is_finite() {
+            Ok(Ramp { value, rate })
+        } else {
+            Err(format!(
+                "{name} = {value} with derivative {rate}: expected finite numbers"
+            ))
+        }
+    }
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -54,8 +112,15 @@ pub struct Longitudinal {
     /// a large t.
     phase0: f64,
     z: f64,
-    /// The input velocity held over the current step.
-    v_held: f64,
+    /// The input velocity over the current step.
+    v_in: Ramp,
+    /// The weight m g, the normal force's reference.
+    weight: f64,
+    /// The normal force over the current step when it is an input (None: the weight).
+    load: Option<Ramp>,
+    /// The mean Coulomb force mu FN over the last period, the reference of S, when the normal
+    /// force is an input.
+    fc_mean: Option<PeriodMean>,
     mean: PeriodMean,
     /// The work of the friction force on the sliding since the start, the integral of FT vr.
     friction_work: f64,
@@ -85,22 +150,22 @@ impl Clock {
     }
 }
 
-/// vr(t) for a velocity source, clock and held input.
-fn velocity_at(source: Velocity, clock: Clock, held: f64, t: f64) -> f64 {
+/// vr(t) for a velocity source, clock and input.
+fn velocity_at(source: Velocity, clock: Clock, input: Ramp, t: f64) -> f64 {
     match source {
         Velocity::Prescribed { vc, va } => vc + va * (TAU * clock.phase(t).fract()).cos(),
-        Velocity::Input => held,
+        Velocity::Input => input.at(t),
     }
 }
 
 /// The sliding displacement, the integral of vr from `t0` to `t`.
-fn displacement(source: Velocity, clock: Clock, held: f64, t0: f64, t: f64) -> f64 {
+fn displacement(source: Velocity, clock: Clock, input: Ramp, t0: f64, t: f64) -> f64 {
     match source {
         Velocity::Prescribed { vc, va } => {
             let sin = |t: f64| (TAU * clock.phase(t).fract()).sin();
             vc * (t - t0) + va / (TAU * clock.f) * (sin(t) - sin(t0))
         }
-        Velocity::Input => held * (t - t0),
+        Velocity::Input => input.integral(t0, t),
     }
 }
 
@@ -153,6 +218,10 @@ impl Longitudinal {
                 va: values.real(vr::VA),
             },
         };
+        let load = match values.item(vr::NORMAL_FORCE_SOURCE) {
+            "input" => Some(Ramp::default()),
+            _ => None,
+        };
         let steps_per_period = values.integer(vr::STEPS_PER_PERIOD);
         if steps_per_period < 1 {
             return Err(format!(
@@ -167,6 +236,17 @@ impl Longitudinal {
         };
         let solver = Solver::new(values, law, fc, (f, steps_per_period), slip_per_period)?;
         let fixed_step = solver.fixed_step();
+        if let (Law::Dahl(d), Some(_)) = (law, load) {
+            if d.alpha < 1.0 && !fixed_step {
+                // Saturated under a constant FC the bristle holds, in closed form; under a moving
+                // one it follows FC where the rate's slope is unbounded, which an adaptive solver
+                // cannot step across.
+                return Err(format!(
+                    "law dahl with alpha = {} and the normal force an input: expected alpha >= 1, or solver exponential or rk4",
+                    d.alpha
+                ));
+            }
+        }
         let tracks_mean = scope.exposes(vr::FT_MEAN) || scope.exposes(vr::S);
         Ok(Longitudinal {
             law,
@@ -178,7 +258,16 @@ impl Longitudinal {
             t: start_time,
             phase0: turns(start_time, f),
             z: 0.0,
-            v_held: values.real(vr::VR_IN),
+            v_in: Ramp {
+                value: values.real(vr::VR_IN),
+                rate: 0.0,
+            },
+            weight: m * g,
+            load: load.map(|_| Ramp {
+                value: values.real(vr::FN_IN),
+                rate: 0.0,
+            }),
+            fc_mean: load.map(|_| PeriodMean::new(start_time, 1.0 / f)),
             mean: PeriodMean::new(start_time, 1.0 / f),
             friction_work: 0.0,
             work: Work::default(),
@@ -204,15 +293,43 @@ impl Longitudinal {
 
     /// The sliding velocity `t` after the scene's time.
     pub fn velocity_at(&self, t: f64) -> f64 {
-        velocity_at(self.velocity, self.clock(), self.v_held, t)
+        velocity_at(self.velocity, self.clock(), self.v_in, t)
+    }
+
+    /// The normal force over the weight `t` after the scene's time.
+    fn load_scale(&self, t: f64) -> f64 {
+        self.load.map_or(1.0, |load| load.at(t) / self.weight)
+    }
+
+    /// The law under the normal force `t` after the scene's time.
+    fn law_at(&self, t: f64) -> Law {
+        match self.load {
+            Some(_) => self.law.loaded(self.load_scale(t)),
+            None => self.law,
+        }
     }
 
     pub fn friction_force(&self) -> f64 {
-        let v = self.velocity_at(0.0);
-        match self.law {
-            Law::Coulomb => coulomb::force(self.fc, v),
-            Law::Dahl(law) => law.force(self.z),
-            Law::LuGre(law) => law.force(self.z, v),
+        self.friction_force_at(0.0, self.z)
+    }
+
+    /// FT `t` after the scene's time with the deflection `z`.
+    fn friction_force_at(&self, t: f64, z: f64) -> f64 {
+        let v = self.velocity_at(t);
+        match self.law_at(t) {
+            Law::Coulomb => coulomb::force(self.fc * self.load_scale(t), v),
+            Law::Dahl(law) => law.force(z),
+            Law::LuGre(law) => law.force(z, v),
+        }
+    }
+
+    /// The bristle's rate z' `t` after the scene's time with the deflection `z`.
+    fn bristle_rate_at(&self, t: f64, z: f64) -> f64 {
+        let v = self.velocity_at(t);
+        match self.law_at(t) {
+            Law::Coulomb => 0.0,
+            Law::Dahl(law) => law.rate(z, v),
+            Law::LuGre(law) => law.rate(z, v),
         }
     }
 
@@ -222,6 +339,15 @@ impl Longitudinal {
 
     pub fn mean_force(&self) -> f64 {
         self.mean.value(self.t, self.friction_force())
+    }
+
+    /// The Coulomb force S is taken against: FC, or with the normal force an input, its mean
+    /// over the same period as FT_mean.
+    fn reference_force(&self) -> f64 {
+        let fc_now = self.fc * self.load_scale(0.0);
+        self.fc_mean
+            .as_ref()
+            .map_or(self.fc, |mean| mean.value(self.t, fc_now))
     }
 
     /// The energy the contact has dissipated since the start: the friction work minus the
@@ -256,22 +382,38 @@ impl Longitudinal {
         } else {
             t_end
         };
-        if let Velocity::Prescribed { vc, va } = self.velocity {
-            let n = f64::from(self.steps_per_period);
-            let phase = self.clock().phase(t - self.t);
-            // The absolute time of a phase (in turns).
-            let at = |phase: f64| self.t + (phase - self.phase0) / self.f;
-            // Coulomb is always integrated in closed form on the grid: its sign at each sub-step's
-            // midpoint must be the sign over the sub-step, which a whole period would not give
-            // where vr only touches zero (vc = va).
-            if self.solver.fixed_step() || (self.law == Law::Coulomb && self.coulomb_grid) {
-                // The grid point after t; phase*n can round just below an integer we reached.
-                let mut j = (phase * n).floor() + 1.0;
-                if at(j / n) <= t {
-                    j += 1.0;
-                }
-                next = next.min(at(j / n));
+        let n = f64::from(self.steps_per_period);
+        let phase = self.clock().phase(t - self.t);
+        // The absolute time of a phase (in turns).
+        let at = |phase: f64| self.t + (phase - self.phase0) / self.f;
+        // Over a moving velocity or normal force the fixed-step solvers freeze them at each
+        // sub-step's midpoint, so they take the grid; a held input they meet exactly.
+        let moving = match self.velocity {
+            Velocity::Prescribed { .. } => true,
+            Velocity::Input => self.v_in.rate != 0.0 || self.load.is_some_and(|l| l.rate != 0.0),
+        };
+        // Coulomb is always integrated in closed form on the grid: its sign at each sub-step's
+        // midpoint must be the sign over the sub-step, which a whole period would not give
+        // where vr only touches zero (vc = va).
+        if moving && (self.solver.fixed_step() || (self.law == Law::Coulomb && self.coulomb_grid)) {
+            // The grid point after t; phase*n can round just below an integer we reached.
+            let mut j = (phase * n).floor() + 1.0;
+            if at(j / n) <= t {
+                j += 1.0;
             }
+            next = next.min(at(j / n));
+        }
+        if let Some(zero) = self
+            .v_in
+            .zero()
+            .filter(|_| self.velocity == Velocity::Input)
+        {
+            let tc = self.t + zero;
+            if tc > t {
+                next = next.min(tc);
+            }
+        }
+        if let Velocity::Prescribed { vc, va } = self.velocity {
             if vc.abs() < va {
                 // vr = 0 where cos(2 pi phase) = -vc/va: at phase fractions p and 1 - p.
                 let p = (-vc / va).acos() / TAU;
@@ -319,7 +461,7 @@ impl Longitudinal {
             return None;
         }
         // vr keeps the sign s over the sub-step, so the distance slid grows with t.
-        let slid = |t: f64| s * displacement(self.velocity, self.clock(), self.v_held, t0, t);
+        let slid = |t: f64| s * displacement(self.velocity, self.clock(), self.v_in, t0, t);
         if slid(t1) <= distance {
             return None;
         }
@@ -348,8 +490,12 @@ impl Longitudinal {
             _ => None,
         };
         let t_ode = saturation.map_or(t1, |(t_sat, _, _)| t_sat);
-        let (source, clock, held) = (self.velocity, self.clock(), self.v_held);
-        let velocity = move |t: f64| velocity_at(source, clock, held, t);
+        let (source, clock, input) = (self.velocity, self.clock(), self.v_in);
+        let velocity = move |t: f64| velocity_at(source, clock, input, t);
+        let (law, weight) = (self.law, self.weight);
+        let loaded = self
+            .load
+            .map(|load| move |t: f64| law.loaded(load.at(t) / weight));
         // Sub-step ends that met in the round-off of the absolute time (a kink a few ulps after
         // a period's boundary, say): one explicit step, as the adaptive solvers took there when
         // they counted absolute time (counted from the step's start, they would take the
@@ -364,7 +510,7 @@ impl Longitudinal {
         };
         let (mut integral, mut power_integral) = solver.advance(
             (&self.law, self.ode_dim),
-            &velocity,
+            (&velocity, loaded.as_ref().map(|l| l as &dyn Fn(f64) -> Law)),
             t0,
             t_ode,
             &mut self.z,
@@ -378,7 +524,7 @@ impl Longitudinal {
                 integral += force * (t1 - t_sat);
             }
             if self.ode_dim > 2 {
-                power_integral += force * displacement(source, clock, held, t_sat, t1);
+                power_integral += force * displacement(source, clock, input, t_sat, t1);
             }
         }
         Ok((integral, power_integral))
@@ -388,6 +534,11 @@ impl Longitudinal {
     fn substep(&mut self, start: f64, end: f64) -> Result<(), String> {
         // The equations' time counts from the scene's time, the step's start.
         let (t0, t1) = (start - self.t, end - self.t);
+        if let (Some(mean), Some(load)) = (self.fc_mean.as_mut(), self.load) {
+            if self.tracks_mean {
+                mean.add(self.fc / self.weight * load.integral(t0, t1), end);
+            }
+        }
         if !matches!(self.solver, Solver::Exponential) && self.law != Law::Coulomb {
             let (integral, power_integral) = self.advance_ode(t0, t1)?;
             self.friction_work += power_integral;
@@ -395,14 +546,15 @@ impl Longitudinal {
             return Ok(());
         }
         let h = t1 - t0;
-        let v = self.velocity_at(0.5 * (t0 + t1));
+        let mid = 0.5 * (t0 + t1);
+        let v = self.velocity_at(mid);
         self.work.steps += 1;
         self.work.rhs_evaluations += 1;
-        let integral = match self.law {
-            Law::Coulomb if !self.coulomb_grid => {
-                coulomb::force(self.fc, self.sliding_direction(v)) * h
-            }
-            Law::Coulomb => coulomb::force(self.fc, v) * h,
+        // A normal force that moves linearly: its midpoint value times h is its integral.
+        let fc = self.fc * self.load_scale(mid);
+        let integral = match self.law_at(mid) {
+            Law::Coulomb if !self.coulomb_grid => coulomb::force(fc, self.sliding_direction(v)) * h,
+            Law::Coulomb => coulomb::force(fc, v) * h,
             Law::Dahl(law) => {
                 let (z1, z_integral) = law.advance(self.z, v, h);
                 self.z = z1;
@@ -424,8 +576,20 @@ impl Longitudinal {
 
 impl Scene for Longitudinal {
     fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String> {
+        self.read_inputs(values);
         if self.velocity == Velocity::Input {
-            self.v_held = values.real(vr::VR_IN);
+            self.v_in = Ramp::checked("vr_in", self.v_in.value, self.v_in.rate)?;
+        }
+        if let Some(load) = self.load {
+            let load = Ramp::checked("FN_in", load.value, load.rate)?;
+            if !(load.value > 0.0 && load.at(h) > 0.0) {
+                return Err(format!(
+                    "the normal force FN_in moves from {} N to {} N over the step from t = {}: expected FN_in > 0 throughout (set a smaller derivative or a shorter step)",
+                    load.value,
+                    load.at(h),
+                    self.t
+                ));
+            }
         }
         let t_end = self.t + h;
         let mut t = self.t;
@@ -438,6 +602,12 @@ impl Scene for Longitudinal {
         }
         self.t = t_end;
         self.phase0 = turns(t_end, self.f);
+        // A derivative applies to the step it was set for (fmi2DoStep restores it with the rest
+        // of the state when the step fails).
+        self.v_in.rate = 0.0;
+        if let Some(load) = self.load.as_mut() {
+            load.rate = 0.0;
+        }
         if !self.z.is_finite() {
             return Err(format!(
                 "the bristle deflection became {} at t = {t_end}",
@@ -466,17 +636,15 @@ impl Scene for Longitudinal {
     }
 
     fn write_outputs(&self, values: &mut ValueSet) {
+        // Direct feedthrough: the outputs at t follow the inputs set at t.
         let mut now = self.clone();
-        if now.velocity == Velocity::Input {
-            // Direct feedthrough: the output at t follows the input set at t.
-            now.v_held = values.real(vr::VR_IN);
-        }
+        now.read_inputs(values);
         let ft_mean = now.mean_force();
         values.set(vr::FT, now.friction_force());
         values.set(vr::Z, now.z);
         values.set(vr::VR, now.velocity_at(0.0));
         values.set(vr::FT_MEAN, ft_mean);
-        values.set(vr::S, (1.0 - ft_mean / now.fc) * 100.0);
+        values.set(vr::S, (1.0 - ft_mean / now.reference_force()) * 100.0);
         values.set(vr::W_DISS, now.dissipated_energy());
     }
 
@@ -496,23 +664,141 @@ impl Scene for Longitudinal {
         ))
     }
 
+    /// The inputs' values and the derivatives set for the coming step (FMI 2.0, 2.1.8: they
+    /// are state), then, with the normal force an input, its value, rate and mean.
     fn save_into(&self, out: &mut Vec<f64>) {
         out.clear();
-        out.extend_from_slice(&[self.t, self.z, self.v_held]);
+        out.extend_from_slice(&[self.t, self.z, self.v_in.value, self.v_in.rate]);
         out.extend_from_slice(&self.mean.save());
         out.extend_from_slice(&[self.solver.step_hint(), self.friction_work]);
+        if let (Some(load), Some(mean)) = (self.load, &self.fc_mean) {
+            out.extend_from_slice(&[load.value, load.rate]);
+            out.extend_from_slice(&mean.save());
+        }
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
-        super::check_saved("LongitudinalFriction", state, 8)?;
+        let expected = if self.load.is_some() { 14 } else { 9 };
+        super::check_saved(
+            "LongitudinalFriction (with this normal force source)",
+            state,
+            expected,
+        )?;
         self.t = state[0];
         self.phase0 = turns(self.t, self.f);
         self.z = state[1];
-        self.v_held = state[2];
-        self.mean.restore(&state[3..6]);
-        self.solver.set_step_hint(state[6]);
-        self.friction_work = state[7];
+        self.v_in = Ramp {
+            value: state[2],
+            rate: state[3],
+        };
+        self.mean.restore(&state[4..7]);
+        self.solver.set_step_hint(state[7]);
+        self.friction_work = state[8];
+        if let (Some(load), Some(mean)) = (self.load.as_mut(), self.fc_mean.as_mut()) {
+            *load = Ramp {
+                value: state[9],
+                rate: state[10],
+            };
+            mean.restore(&state[11..14]);
+        }
         Ok(())
+    }
+
+    fn set_input_derivative(
+        &mut self,
+        value_reference: u32,
+        derivative: f64,
+    ) -> Result<(), String> {
+        // Kept when the input is not read too, and ignored there like the input itself.
+        match (value_reference, self.load.as_mut()) {
+            (vr::VR_IN, _) => self.v_in.rate = derivative,
+            (vr::FN_IN, Some(load)) => load.rate = derivative,
+            (vr::FN_IN, None) => {}
+            _ => return Err(format!("value reference {value_reference} is not an input")),
+        }
+        Ok(())
+    }
+
+    /// Every output's first derivative at the current state: vr', z' and W_diss' = FT vr -
+    /// kt z z' exactly; FT' exactly for Coulomb (away from a sign change) and Dahl (kt z'), and
+    /// for LuGre, whose damping term needs z'', as a centred difference along the solution;
+    /// FT_mean's and S's as [`PeriodMean::rate`].
+    fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {
+        let mut now = self.clone();
+        now.read_inputs(values);
+        let z_rate = now.bristle_rate_at(0.0, now.z);
+        let ft = now.friction_force();
+        let ft_rate = now.friction_force_rate(z_rate);
+        Ok(match value_reference {
+            vr::FT => ft_rate,
+            vr::Z => z_rate,
+            vr::VR => now.velocity_rate(),
+            vr::W_DISS => ft * now.velocity_at(0.0) - now.stiffness_or_zero() * now.z * z_rate,
+            vr::FT_MEAN => now.mean.rate(now.t, ft, ft_rate),
+            vr::S => {
+                let (mean, mean_rate) = (now.mean_force(), now.mean.rate(now.t, ft, ft_rate));
+                let fc_now = now.fc * now.load_scale(0.0);
+                let fc_rate = now.fc * now.load.map_or(0.0, |l| l.rate) / now.weight;
+                let (reference, reference_rate) = match &now.fc_mean {
+                    Some(m) => (now.reference_force(), m.rate(now.t, fc_now, fc_rate)),
+                    None => (now.fc, 0.0),
+                };
+                -100.0 * (mean_rate * reference - mean * reference_rate) / (reference * reference)
+            }
+            _ => {
+                return Err(format!(
+                    "value reference {value_reference} has no derivative here: expected an output"
+                ))
+            }
+        })
+    }
+}
+
+impl Longitudinal {
+    /// Takes the inputs' current values from `values` (their rates are set for the step).
+    fn read_inputs(&mut self, values: &ValueSet) {
+        if self.velocity == Velocity::Input {
+            self.v_in.value = values.real(vr::VR_IN);
+        }
+        if let Some(load) = self.load.as_mut() {
+            load.value = values.real(vr::FN_IN);
+        }
+    }
+
+    /// vr' now.
+    fn velocity_rate(&self) -> f64 {
+        match self.velocity {
+            Velocity::Prescribed { va, .. } => {
+                -va * TAU * self.f * (TAU * self.clock().phase(0.0).fract()).sin()
+            }
+            Velocity::Input => self.v_in.rate,
+        }
+    }
+
+    /// kt, or 0 for Coulomb (which stores nothing).
+    fn stiffness_or_zero(&self) -> f64 {
+        match self.law {
+            Law::Coulomb => 0.0,
+            _ => self.stiffness(),
+        }
+    }
+
+    /// FT' now, given z'. LuGre's as the centred difference of FT at +-eps along the tangent
+    /// z + tau z': its second-order terms cancel, so the error is of order (eps / T)^2 for the
+    /// fastest time scale T met; eps is a millionth of 1/(2 pi f), at most 1 ns.
+    fn friction_force_rate(&self, z_rate: f64) -> f64 {
+        match self.law {
+            Law::Coulomb => {
+                let v = self.velocity_at(0.0);
+                coulomb::force(self.fc * self.load.map_or(0.0, |l| l.rate) / self.weight, v)
+            }
+            Law::Dahl(law) => law.kt * z_rate,
+            Law::LuGre(_) => {
+                let eps = (1e-6 / (TAU * self.f)).min(1e-9);
+                let at = |tau: f64| self.friction_force_at(tau, self.z + tau * z_rate);
+                (at(eps) - at(-eps)) / (2.0 * eps)
+            }
+        }
     }
 }
 
@@ -526,6 +812,9 @@ pub fn steady_mean_force(values: &ValueSet, periods: u32) -> Result<f64, String>
     }
     Ok(scene.mean_force())
 }
+
+#[cfg(test)]
+mod input_tests;
 
 #[cfg(test)]
 mod tests {

@@ -71,7 +71,7 @@ def test_coupling_error_is_first_order_held_and_second_order_with_derivatives(er
 
 @pytest.mark.parametrize(
     "model, interpolates",
-    [("TransverseFriction", True), ("DriveTrain", True), ("LongitudinalFriction", False), ("DryFrictionOscillator", False)],
+    [("TransverseFriction", True), ("DriveTrain", True), ("LongitudinalFriction", True), ("DryFrictionOscillator", False)],
 )
 def test_model_description_declares_what_the_functions_do(model, interpolates):
     cs = fmpy.read_model_description(fmu_path(model)).coSimulation
@@ -123,7 +123,11 @@ def test_unsupported_orders_and_variables_are_refused_with_a_message():
     slave.free()
 
 
-@pytest.mark.parametrize("model, setup", [("DriveTrain", {}), ("TransverseFriction", {"drive_source": "input"})])
+@pytest.mark.parametrize("model, setup", [
+    ("DriveTrain", {}),
+    ("TransverseFriction", {"drive_source": "input"}),
+    ("LongitudinalFriction", {"velocity_source": "input", "normal_force_source": "input"}),
+])
 def test_a_restored_state_keeps_the_input_derivatives_set_for_the_next_step(model, setup):
     """Regression: fmi2SetFMUstate (and a deserialized state) dropped the derivatives set for the
     coming step, so a master that rolled back to retake the step got other physics (FMI 2.0,

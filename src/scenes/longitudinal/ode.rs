@@ -22,10 +22,15 @@ pub enum Solver {
     Radau5(Radau5),
 }
 
-/// `(z, q, w)` with the velocity as a function of time; the first `dim` of them.
+/// The law as a function of time, under a moving normal force.
+pub type LoadedLaw<'a> = &'a dyn Fn(f64) -> Law;
+
+/// `(z, q, w)` with the velocity (and the law, under a moving normal force) as a function of
+/// time; the first `dim` of them.
 struct Bristle<'a> {
     law: &'a Law,
     velocity: &'a dyn Fn(f64) -> f64,
+    loaded: Option<LoadedLaw<'a>>,
     dim: usize,
 }
 
@@ -39,7 +44,8 @@ impl Ode for Bristle<'_> {
     }
     fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let v = (self.velocity)(t);
-        let (rate, force) = match self.law {
+        let law = self.loaded.map(|loaded| loaded(t));
+        let (rate, force) = match law.as_ref().unwrap_or(self.law) {
             // Coulomb has no state; the scene integrates its force in closed form instead.
             Law::Coulomb => (0.0, 0.0),
             Law::Dahl(d) => (d.rate(y[0], v), d.force(y[0])),
@@ -150,13 +156,18 @@ impl Solver {
     pub fn advance(
         &mut self,
         (law, dim): (&Law, usize),
-        velocity: &dyn Fn(f64) -> f64,
+        (velocity, loaded): (&dyn Fn(f64) -> f64, Option<LoadedLaw>),
         t0: f64,
         t1: f64,
         z: &mut f64,
         work: &mut Work,
     ) -> Result<(f64, f64), String> {
-        let ode = Bristle { law, velocity, dim };
+        let ode = Bristle {
+            law,
+            velocity,
+            loaded,
+            dim,
+        };
         let mut y = [*z, 0.0, 0.0];
         match self {
             Solver::Exponential => return Err("exponential is not an ODE solver".into()),
