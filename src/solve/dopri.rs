@@ -824,7 +824,8 @@ impl Dopri5 {
             work.steps += 1;
             if self.stiffness.due() {
                 let h_lambda = Self::h_lambda(&tr, h_taken, n);
-                self.stiffness.record(h_lambda, t + h_taken);
+                self.stiffness
+                    .record(h_lambda, tr.sigma * h_taken, t + h_taken);
             }
             prev = Some((t, h_taken, y_start, sw_start));
             t = if last && full { t1 } else { t + h_taken };

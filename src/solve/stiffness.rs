@@ -3,11 +3,21 @@
 //! solution's last stages stays near the method's stability bound, stability holds the step,
 //! not the tolerance, and an implicit or exponential method would take far fewer steps.
 //!
+//! With Lawson's integrating factor the stages no longer see the decay it takes, so a second
+//! sign counts too: the factor's exponent sigma h past the same bound while the stages still
+//! see h |lambda| of at least [`COUPLED_H_LAMBDA`]. There the decay, coupled into the other
+//! components, holds the step, as it does on a stiff contact; a decay the factor takes whole
+//! (a relaxation that only follows its forcing) leaves the stages h |lambda| near 0.
+//!
 //! It only informs the user: the explicit solver still finishes, accurately but slowly.
 
 /// h |lambda| past which a step counts as held by stability: dopri5's stability region reaches
 /// 3.3 along the negative real axis (Hairer's value).
 const SUSPICIOUS_H_LAMBDA: f64 = 3.25;
+
+/// h |lambda| of the stages past which a step whose integrating factor's exponent is past the
+/// stability bound counts as held by the decay too.
+const COUPLED_H_LAMBDA: f64 = 0.5;
 
 /// How many suspicious tests in a row (not interrupted by [`CLEARING_TESTS`] clear ones) make
 /// the problem stiff.
@@ -42,9 +52,11 @@ impl StiffnessTest {
     }
 
     /// Records the test of a step ending at `t`: `h_lambda` is the step times the Jacobian's
-    /// size along the last stages.
-    pub fn record(&mut self, h_lambda: f64, t: f64) {
-        if h_lambda > SUSPICIOUS_H_LAMBDA {
+    /// size along the last stages, `sigma_h` the exponent of the integrating factor over the
+    /// step (0 without one).
+    pub fn record(&mut self, h_lambda: f64, sigma_h: f64, t: f64) {
+        let held_by_decay = sigma_h > SUSPICIOUS_H_LAMBDA && h_lambda >= COUPLED_H_LAMBDA;
+        if h_lambda > SUSPICIOUS_H_LAMBDA || held_by_decay {
             self.clear = 0;
             self.suspicious += 1;
             if self.suspicious == STIFF_AFTER {
@@ -72,8 +84,23 @@ mod tests {
 
     fn run(test: &mut StiffnessTest, h_lambdas: impl IntoIterator<Item = f64>) {
         for (i, hl) in h_lambdas.into_iter().enumerate() {
-            test.record(hl, i as f64);
+            test.record(hl, 0.0, i as f64);
         }
+    }
+
+    /// A factor's exponent past the bound is suspicious only while the stages still see the
+    /// decay.
+    #[test]
+    fn a_decay_the_factor_takes_whole_is_not_stiff() {
+        let mut test = StiffnessTest::default();
+        for i in 0..30 {
+            test.record(0.05, 10.0, f64::from(i));
+        }
+        assert_eq!(test.take(), None);
+        for i in 0..15 {
+            test.record(0.9, 5.0, f64::from(i));
+        }
+        assert_eq!(test.take(), Some(14.0));
     }
 
     #[test]
@@ -81,7 +108,7 @@ mod tests {
         let mut test = StiffnessTest::default();
         run(&mut test, std::iter::repeat_n(3.3, 14));
         assert_eq!(test.take(), None);
-        test.record(3.3, 14.0);
+        test.record(3.3, 0.0, 14.0);
         assert_eq!(test.take(), Some(14.0));
         assert_eq!(test.take(), None, "reported once");
         assert!(!test.due());
@@ -105,7 +132,7 @@ mod tests {
         let mut test = StiffnessTest::default();
         let due: Vec<u64> = (1..=2500).filter(|_| test.due()).collect();
         assert_eq!(due.len(), 2);
-        test.record(3.3, 0.0);
+        test.record(3.3, 0.0, 0.0);
         assert!(test.due(), "every step once suspicious");
     }
 }

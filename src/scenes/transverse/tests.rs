@@ -517,3 +517,33 @@ fn radau5_starts_from_rest_far_from_zero() {
     let far = mean_from(&v, 1e4, 3);
     assert!((far / at_zero - 1.0).abs() < 1e-6, "{far} vs {at_zero}");
 }
+
+/// Oracle: the work of radau5 on the same case. On a contact 1e4 times stiffer than the paper's
+/// dopri5's integrating factor takes the bristle's decay, but the decay, coupled into the body,
+/// still holds its steps, to hundreds of times radau5's: the step that finds it returns the
+/// stiffness warning, within the first period. At the paper's stiffness dopri5 takes fewer
+/// steps than radau5, and no warning.
+#[test]
+fn dopri5_on_a_far_stiffer_contact_says_it_is_stiff() {
+    for slip in ["split", "total"] {
+        let steps = |solver: &str, kt_factor: f64| {
+            let v = benchmark_case(solver, slip, kt_factor, 1e-6);
+            let mut scene = Transverse::new(&v, 0.0).unwrap();
+            let mut warned = false;
+            for _ in 0..10 {
+                scene.do_step(1.0 / 30_000.0, &v).unwrap();
+                warned |= scene.take_warning().is_some();
+            }
+            (scene.work.steps, warned)
+        };
+        let (stiff, warned) = steps("dopri5", 1e4);
+        let (implicit, _) = steps("radau5", 1e4);
+        assert!(stiff > 100 * implicit, "{slip}: {stiff} against {implicit}");
+        assert!(warned, "{slip}: no warning at kt x 1e4");
+        let (paper, warned) = steps("dopri5", 1.0);
+        assert!(
+            !warned,
+            "{slip}: a warning at the paper's kt ({paper} steps)"
+        );
+    }
+}
