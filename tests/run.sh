@@ -33,25 +33,37 @@ if [ ! -x .venv/bin/python ]; then
 fi
 .venv/bin/pip install -q --disable-pip-version-check -r tests/python/requirements.txt
 
-echo "== cargo fmt --check"
+# Each stage's heading says the CPU time the command has used so far (user + system, children
+# included), so a log shows where the time goes.
+stage() {
+    local times_file cpu
+    times_file=$(mktemp)
+    times > "$times_file"
+    cpu=$(awk '{ for (i = 1; i <= 2; i++) { split($i, t, /[ms]/); sum += t[1] * 60 + t[2] } } END { printf "%.0f", sum }' "$times_file")
+    rm -f "$times_file"
+    echo "== $1 ($cpu s of CPU so far)"
+}
+
+stage "cargo fmt --check"
 cargo fmt --check
-echo "== cargo clippy"
+stage "cargo clippy"
 cargo clippy --all-targets --release -- -D warnings
-echo "== cargo test"
+stage "cargo test"
 # The testing profile (Cargo.toml) builds in target/testing: the main command's target/release is
 # left as it is, so neither rebuilds the other. It also builds the friction-fmu command, which
 # packs the FMUs below (the release build would compile everything again, with fat LTO). Before
 # that packing, which refreshes modelDescription/: a test checks the committed copy.
 cargo test --profile testing
 BIN=target/testing/friction-fmu
-echo "== fuzzing under valgrind memcheck (invalid reads and writes, use after free)"
+stage "fuzzing under valgrind memcheck (invalid reads and writes, use after free)"
 FUZZ_BIN=$(cargo test --profile testing --test fuzz_calls --no-run 2>&1 | grep -o 'target/testing/deps/fuzz_calls-[0-9a-f]*' | head -1)
 FUZZ_SEQUENCES=20000 valgrind --error-exitcode=9 --leak-check=no -q "$FUZZ_BIN" random_call_sequences
-echo "== packing the FMUs"
+stage "packing the FMUs"
 $BIN build
 $BIN build scenes/*.toml --out fmu-out/scenes
-echo "== pytest (fmpy, libcosim, ecos, the C host natively and under wine)"
+stage "pytest (fmpy, libcosim, ecos, the C host natively and under wine)"
 # wine's prefix outside the source tree: cargo scans the package directory, and the prefix links
 # to /.
 export WINEPREFIX="${WINEPREFIX:-$HOME/.wine-friction-fmu}" WINEDEBUG=-all WINEDLLOVERRIDES="mscoree,mshtml="
 FRICTION_FMU_BIN=$BIN .venv/bin/python -m pytest tests/python
+stage "done"
