@@ -14,6 +14,7 @@
 //! exponential per distinct step size). The motor is a source, so there is no passivity to
 //! check; the state is checked finite.
 
+use super::switch::{DriveSolver, Switch, VoltageSource};
 use super::{require_finite_start, require_non_negative, require_positive, Scene};
 use crate::interface::drive::vr;
 use crate::interface::values::ValueSet;
@@ -109,9 +110,11 @@ impl Drive {
         }
         let lead = require_positive(values, vr::LEAD)?;
         let m_nut = require_non_negative(values, vr::M_NUT)?;
-        let voltage = match values.item(vr::VOLTAGE_SOURCE) {
-            "input" => None,
-            _ => Some(super::require_finite(values, vr::V)?),
+        // One scheme: the matrix exponential (an unknown number is still refused).
+        let DriveSolver::Exponential = DriveSolver::read(values, vr::SOLVER)?;
+        let voltage = match VoltageSource::read(values, vr::VOLTAGE_SOURCE)? {
+            VoltageSource::Input => None,
+            VoltageSource::Parameter => Some(super::require_finite(values, vr::V)?),
         };
         let r = lead / (TAU * n);
         let p = Params {

@@ -20,6 +20,7 @@
 mod ode;
 
 use super::period_mean::PeriodMean;
+use super::switch::{LongitudinalLaw, NormalForceSource, Switch, VelocitySource};
 use super::{require_passive, require_positive, resolved_energy, Scene, Scope};
 use crate::friction::{coulomb, dahl::Dahl, lugre::LuGre, sgn};
 use crate::interface::longitudinal::vr;
@@ -195,14 +196,14 @@ impl Longitudinal {
             ));
         }
         let kt = require_positive(values, vr::KT)?;
-        let law = match values.item(vr::LAW) {
-            "coulomb" => Law::Coulomb,
-            "dahl" => Law::Dahl(Dahl {
+        let law = match LongitudinalLaw::read(values, vr::LAW)? {
+            LongitudinalLaw::Coulomb => Law::Coulomb,
+            LongitudinalLaw::Dahl => Law::Dahl(Dahl {
                 kt,
                 fc,
                 alpha: require_positive(values, vr::ALPHA)?,
             }),
-            _ => Law::LuGre(LuGre {
+            LongitudinalLaw::LuGre => Law::LuGre(LuGre {
                 sigma0: kt,
                 sigma1: values.real(vr::SIGMA1),
                 sigma2: values.real(vr::SIGMA2),
@@ -211,16 +212,16 @@ impl Longitudinal {
                 vs: require_positive(values, vr::VS)?,
             }),
         };
-        let velocity = match values.item(vr::VELOCITY_SOURCE) {
-            "input" => Velocity::Input,
-            _ => Velocity::Prescribed {
+        let velocity = match VelocitySource::read(values, vr::VELOCITY_SOURCE)? {
+            VelocitySource::Input => Velocity::Input,
+            VelocitySource::Prescribed => Velocity::Prescribed {
                 vc: values.real(vr::VC),
                 va: values.real(vr::VA),
             },
         };
-        let load = match values.item(vr::NORMAL_FORCE_SOURCE) {
-            "input" => Some(Ramp::default()),
-            _ => None,
+        let load = match NormalForceSource::read(values, vr::NORMAL_FORCE_SOURCE)? {
+            NormalForceSource::Input => Some(Ramp::default()),
+            NormalForceSource::Weight => None,
         };
         let steps_per_period = values.integer(vr::STEPS_PER_PERIOD);
         if steps_per_period < 1 {

@@ -6,6 +6,7 @@ pub mod longitudinal;
 pub mod oscillator;
 pub mod period_mean;
 pub mod scope;
+pub mod switch;
 pub mod transverse;
 
 use crate::interface::values::ValueSet;

@@ -15,6 +15,7 @@
 pub mod exact;
 mod solver;
 
+use super::switch::{ForceSource, OscillatorLaw, OscillatorSolver, Switch as _};
 use super::{require_finite, require_non_negative, require_positive, Scene, Scope};
 use crate::friction::regularized::{stiction_excess, Regularized};
 use crate::interface::oscillator::vr;
@@ -233,30 +234,37 @@ impl Oscillator {
             k,
             w,
             p,
-            input: values.item(vr::FORCE_SOURCE) == "input",
+            input: ForceSource::read(values, vr::FORCE_SOURCE)? == ForceSource::Input,
         };
         let held = require_finite(values, vr::P_IN)?;
         let period = TAU / w;
-        let law = values.item(vr::LAW);
-        let core = match law {
-            "exact" | "exact_stiction" => {
-                let hs = if law == "exact" { h } else { h + ha };
+        let law = OscillatorLaw::read(values, vr::LAW)?;
+        let regularized = match law {
+            OscillatorLaw::Exact | OscillatorLaw::ExactStiction => None,
+            OscillatorLaw::Linear => Some(Regularized::Linear { h, d }),
+            OscillatorLaw::LinearStiction => Some(Regularized::LinearStiction { h, d, da }),
+            OscillatorLaw::Trigonometric => Some(Regularized::Trigonometric { h, d }),
+            OscillatorLaw::TrigonometricStiction => {
+                Some(Regularized::TrigonometricStiction { h, d, da })
+            }
+        };
+        let core = match regularized {
+            None => {
+                let hs = if law == OscillatorLaw::Exact {
+                    h
+                } else {
+                    h + ha
+                };
                 Core::Exact(Box::new(Switch::new(plant, (h, hs), steps)?))
             }
-            _ => {
-                let law = match law {
-                    "linear" => Regularized::Linear { h, d },
-                    "linear_stiction" => Regularized::LinearStiction { h, d, da },
-                    "trigonometric_stiction" => Regularized::TrigonometricStiction { h, d, da },
-                    _ => Regularized::Trigonometric { h, d },
-                };
+            Some(law) => {
                 let equations = Equations {
                     plant,
                     held,
                     law,
                     with_work: scope.exposes(vr::W_DISS),
                 };
-                let name = values.item(vr::SOLVER);
+                let name = OscillatorSolver::read(values, vr::SOLVER)?;
                 Core::Regularized(equations, Solver::new(name, rtol, atol, period / steps))
             }
         };
@@ -284,7 +292,7 @@ impl Oscillator {
             },
             tracks_amplitude: scope.exposes(vr::U_AMPLITUDE),
             reading_tolerance: rtol,
-            unresolved: (law == "linear_stiction" && d.min(da) < NARROWEST_LINEAR_STICTION).then(|| {
+            unresolved: (law == OscillatorLaw::LinearStiction && d.min(da) < NARROWEST_LINEAR_STICTION).then(|| {
                 format!(
                     "linear_stiction with D = {d:e} and Da = {da:e} m/s: its falling branch (slope -h/D) amplifies the solver's error across the band, and below {NARROWEST_LINEAR_STICTION:e} m/s the amplitude and W_diss are not accurate to the tolerance whatever rtol; trigonometric_stiction or exact_stiction resolve so narrow a band"
                 )

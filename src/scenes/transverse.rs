@@ -19,6 +19,7 @@ mod exponential;
 mod two_phase;
 
 use super::period_mean::PeriodMean;
+use super::switch::{self, DriveSource, InitialState, Switch, TransverseSolver};
 use super::{
     require_finite, require_finite_start, require_non_negative, require_passive, require_positive,
     resolved_energy, Scene, Scope,
@@ -265,7 +266,7 @@ impl DriveVelocity {
 }
 
 /// The continuous-time ODE with the drive velocity `vd(t)`.
-struct Equations<'a> {
+pub struct Equations<'a> {
     p: &'a Params,
     vd: DriveVelocity,
     /// Where steps also end inside the Stribeck band ([`band_points`]).
@@ -277,7 +278,7 @@ struct Equations<'a> {
 }
 
 impl<'a> Equations<'a> {
-    fn new(p: &'a Params, vd: DriveVelocity, band_points: &'static [f64]) -> Self {
+    pub fn new(p: &'a Params, vd: DriveVelocity, band_points: &'static [f64]) -> Self {
         Equations {
             p,
             vd,
@@ -457,11 +458,11 @@ pub struct Trim {
 }
 
 impl Trim {
-    fn of(scope: &Scope, values: &ValueSet, solver: &str) -> Self {
+    fn of(scope: &Scope, values: &ValueSet, solver: TransverseSolver) -> Self {
         let still = |vref: u32| scope.fixes(vref) && values.real(vref) == 0.0;
         Trim {
             // The paper's two-phase step is written in the plane; it stays as the paper has it.
-            axial: (still(vr::VA) || still(vr::ETA)) && solver != "two_phase",
+            axial: (still(vr::VA) || still(vr::ETA)) && solver != TransverseSolver::TwoPhase,
             mean: scope.exposes(vr::FFX_MEAN),
         }
     }
@@ -518,11 +519,11 @@ impl Transverse {
             h0: 2.0 * zeta * (m * kt).sqrt(),
             hv,
         };
-        let slip = match values.item(vr::SLIP_LAW) {
-            "total" => SlipLaw::Total,
-            _ => SlipLaw::Split,
+        let slip = match switch::SlipLaw::read(values, vr::SLIP_LAW)? {
+            switch::SlipLaw::Total => SlipLaw::Total,
+            switch::SlipLaw::Split => SlipLaw::Split,
         };
-        let held = values.item(vr::BODY) == "held";
+        let held = switch::Body::read(values, vr::BODY)? == switch::Body::Held;
         let p = Params {
             law,
             slip,
@@ -535,9 +536,9 @@ impl Transverse {
             held,
             phase0: turns(start_time, f),
         };
-        let drive = match values.item(vr::DRIVE_SOURCE) {
-            "input" => Drive::Input,
-            _ => Drive::Prescribed(vd),
+        let drive = match DriveSource::read(values, vr::DRIVE_SOURCE)? {
+            DriveSource::Input => Drive::Input,
+            DriveSource::Prescribed => Drive::Prescribed(vd),
         };
         let vd_start = match drive {
             Drive::Prescribed(v) => v,
@@ -562,7 +563,8 @@ impl Transverse {
 
         // Initial state.
         let mut y = [0.0; MAX_DIM];
-        if values.item(vr::INITIAL) == "sliding" && !held && vd_start != 0.0 {
+        let sliding = InitialState::read(values, vr::INITIAL)? == InitialState::Sliding;
+        if sliding && !held && vd_start != 0.0 {
             y[VX] = vd_start;
             y[LAMBDA] = if kd > 0.0 {
                 fc / kd * vd_start.signum()
@@ -575,16 +577,19 @@ impl Transverse {
         // starts deflected.
         y[W] = 0.5 * kt * (y[ZX] * y[ZX] + y[ZY] * y[ZY]);
 
-        let trim = Trim::of(scope, values, values.item(vr::SOLVER));
-        let solver = match values.item(vr::SOLVER) {
-            "rk4" => Solver::Rk4 {
+        let name = TransverseSolver::read(values, vr::SOLVER)?;
+        let trim = Trim::of(scope, values, name);
+        let solver = match name {
+            TransverseSolver::Rk4 => Solver::Rk4 {
                 steps_per_period: steps,
             },
-            "two_phase" => Solver::TwoPhase(two_phase::TwoPhase::new(&p, start_time, &y, steps)),
-            "exponential" => Solver::Exponential(exponential::Exponential {
+            TransverseSolver::TwoPhase => {
+                Solver::TwoPhase(two_phase::TwoPhase::new(&p, start_time, &y, steps))
+            }
+            TransverseSolver::Exponential => Solver::Exponential(exponential::Exponential {
                 steps_per_period: steps,
             }),
-            name => {
+            TransverseSolver::Dopri5 | TransverseSolver::Radau5 => {
                 let mut scale = tolerance_scales(&p, vd_start);
                 if trim.axial {
                     // The 1D equations leave the y axis at rest: out of the error control, so
@@ -592,7 +597,7 @@ impl Transverse {
                     scale[VY] = f64::INFINITY;
                     scale[ZY] = f64::INFINITY;
                 }
-                if name == "radau5" {
+                if name == TransverseSolver::Radau5 {
                     let mut radau = Radau5::new(rtol, rtol, 0.05 / f);
                     radau.atol_scale = scale;
                     Solver::Radau5(radau)

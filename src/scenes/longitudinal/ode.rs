@@ -6,6 +6,7 @@
 use super::Law;
 use crate::interface::longitudinal::vr;
 use crate::interface::values::ValueSet;
+use crate::scenes::switch::{LongitudinalSolver, Switch};
 use crate::solve::dopri::Dopri5;
 use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
@@ -69,14 +70,15 @@ impl Solver {
         (f, steps_per_period): (f64, u32),
         slip_per_period: f64,
     ) -> Result<Self, String> {
-        let name = values.item(vr::SOLVER);
-        if name == "exponential" {
-            return Ok(Solver::Exponential);
-        }
-        if name == "rk4" {
-            return Ok(Solver::Rk4 {
-                h_max: 1.0 / (f * f64::from(steps_per_period)),
-            });
+        let name = LongitudinalSolver::read(values, vr::SOLVER)?;
+        match name {
+            LongitudinalSolver::Exponential => return Ok(Solver::Exponential),
+            LongitudinalSolver::Rk4 => {
+                return Ok(Solver::Rk4 {
+                    h_max: 1.0 / (f * f64::from(steps_per_period)),
+                })
+            }
+            LongitudinalSolver::Dopri5 | LongitudinalSolver::Radau5 => {}
         }
         let rtol = values.real(vr::TOLERANCE);
         if !(1e-14..=1e-2).contains(&rtol) {
@@ -100,7 +102,7 @@ impl Solver {
         };
         // The work w is left out of the error control (an infinite atol): the steps the
         // deflection needs integrate it to the same order.
-        Ok(if name == "radau5" {
+        Ok(if name == LongitudinalSolver::Radau5 {
             let mut radau = Radau5::new(rtol, rtol * z_scale.min(q_scale), 1.0 / f);
             radau.atol_scale[2] = f64::INFINITY;
             Solver::Radau5(radau)

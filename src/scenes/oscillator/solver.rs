@@ -4,6 +4,7 @@
 
 use super::Equations;
 use crate::friction::regularized::Regularized;
+use crate::scenes::switch::OscillatorSolver;
 use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
 use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
@@ -20,15 +21,15 @@ impl Solver {
     /// `name` is the `solver` item; `h_max` the longest step (the fixed step of rk4).
     /// The friction work, state 2, is left out of the error control (an infinite atol): the
     /// steps the motion needs integrate it to the same order.
-    pub fn new(name: &str, rtol: f64, atol: f64, h_max: f64) -> Self {
+    pub fn new(name: OscillatorSolver, rtol: f64, atol: f64, h_max: f64) -> Self {
         match name {
-            "dopri5" => {
+            OscillatorSolver::Dopri5 => {
                 let mut atols = [atol; MAX_DIM];
                 atols[2] = f64::INFINITY;
                 Solver::Dopri5(Dopri5::new(rtol, atols, h_max))
             }
-            "rk4" => Solver::Rk4(Rk4 { h_max }),
-            _ => {
+            OscillatorSolver::Rk4 => Solver::Rk4(Rk4 { h_max }),
+            OscillatorSolver::Radau5 => {
                 let mut radau = Radau5::new(rtol, atol, h_max);
                 radau.atol_scale[2] = f64::INFINITY;
                 Solver::Radau5(radau)
