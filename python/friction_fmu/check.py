@@ -1,7 +1,7 @@
 """Up-front checks of a sweep against the FMU's modelDescription, before any point runs.
 
 A misspelt name, switch item or number would fail every point the same way (or, for a
-heat map axis, fail after the whole sweep has run): each is refused here with a one-line
+plot's axis, fail after the whole sweep has run): each is refused here with a one-line
 ValueError saying what was given and what was expected.
 """
 import argparse
@@ -82,7 +82,7 @@ def ranges(md, plan):
 
 
 def view(plan, x, y, column, fixed):
-    """The heat map's axes (`y` None: a single row), color column and pinned axes."""
+    """The plot's axes (`y` None: a line plot), color column and pinned axes."""
     axes = list(plan.grid)
     for flag, name in [("--x", x), ("--y", y), *(("--fix", n) for n in fixed)]:
         if name is not None and name not in plan.grid:
@@ -91,7 +91,7 @@ def view(plan, x, y, column, fixed):
         raise ValueError(f"--x and --y are both {x}: give two different grid axes")
     for name, value in fixed.items():
         if name in (x, y):
-            raise ValueError(f"--fix {name}: it is the heat map's {'x' if name == x else 'y'} "
+            raise ValueError(f"--fix {name}: it is the plot's {'x' if name == x else 'y'} "
                              "axis, so it cannot be pinned")
         if value not in plan.grid[name]:
             raise ValueError(f"--fix {name}={value}: not a value of that axis "

@@ -507,7 +507,8 @@ def write_results(args, rows, paths, stopped=None):
     from .coupling_plot import plot  # matplotlib only once there is something to draw
 
     write_csv(paths[".csv"], rows, args.derivatives)
-    plot(rows, paths[".png"], paths[".svg"], describe(args, "ms", 1e3), stopped=stopped)
+    # PREFIX.png and PREFIX.svg, the paths out_paths gave
+    plot(rows, paths[".csv"].with_suffix(""), describe(args, "ms", 1e3), stopped=stopped)
     for path in paths.values():
         print(f"wrote {path}")
 

@@ -9,8 +9,9 @@
 
 Points run on the local cores (a process pool, one worker per core) unless a Dask scheduler is
 given; both executors get the same task, `runner.run_point`, through the same
-concurrent.futures interface. Writes PREFIX.csv (one row per point), PREFIX.svg (heat map) and
-PREFIX.json (what was run). Exit status: 0 when every point ran, 1 when any failed, 2 when the
+concurrent.futures interface. Writes PREFIX.csv (one row per point), PREFIX.png and PREFIX.svg
+(the plot: a line against a single grid axis, a heat map over two) and PREFIX.json (what was
+run). Exit status: 0 when every point ran, 1 when any failed, 2 when the
 arguments were refused (before any point ran).
 """
 import argparse
@@ -25,14 +26,14 @@ import tempfile
 import time
 from dataclasses import dataclass
 
-from . import check, heatmap
+from . import check
 from .grid import Output, Plan, Span, load_file, parse_assignment
 from .presets import PRESETS
 from .progress import Progress
 from .runner import FmuSource, run_point
 
 CONNECT_TIMEOUT = 10.0  # seconds; Dask's own default, 30 s, is long to wait for a typo
-SUFFIXES = (".csv", ".svg", ".json")
+SUFFIXES = (".csv", ".png", ".svg", ".json")
 
 
 @contextlib.contextmanager
@@ -147,9 +148,9 @@ def columns(plan):
 
 
 def out_paths(out, model):
-    """{suffix: path} of the three files of `--out PREFIX`: PREFIX.csv, .svg and .json. A
+    """{suffix: path} of the four files of `--out PREFIX`: PREFIX.csv, .png, .svg and .json. A
     directory (one that exists, or any path ending in /) holds MODEL-sweep.*; a PREFIX ending in
-    one of the three suffixes loses it, and any other dot is kept (run.f2.5 -> run.f2.5.csv)."""
+    one of the four suffixes loses it, and any other dot is kept (run.f2.5 -> run.f2.5.csv)."""
     prefix = pathlib.Path(out)
     if out.endswith(("/", os.sep)) or prefix.is_dir():
         prefix = prefix / f"{model}-sweep"
@@ -193,7 +194,7 @@ def units_of(md):
     return units
 
 
-def heatmap_units(md, plan):
+def plot_units(md, plan):
     units = units_of(md)
     for output in plan.outputs:
         if output.variable in units:
@@ -242,11 +243,12 @@ def parse_args(argv):
                    help="send the FMU as bytes or by path (default: path locally, bytes on Dask)")
     p.add_argument("--out", help="output prefix, or a directory (DIR/ writes "
                                  "DIR/MODEL-sweep.*); default fmu-out/sweeps/sweep")
-    p.add_argument("--x", help="heat map x axis (default: first grid axis)")
-    p.add_argument("--y", help="heat map y axis (default: second grid axis)")
-    p.add_argument("--color", help="heat map column (default: first output)")
+    p.add_argument("--x", help="the plot's x axis (default: first grid axis)")
+    p.add_argument("--y", help="heat map y axis (default: second grid axis; with one axis the "
+                               "plot is a line)")
+    p.add_argument("--color", help="the column plotted (default: first output)")
     p.add_argument("--fix", action="append", default=[], metavar="NAME=VALUE",
-                   help="pin another grid axis in the heat map instead of faceting it")
+                   help="pin another grid axis in the plot instead of faceting it")
     p.add_argument("--quiet", action="store_true", help="no start line or progress")
     return p.parse_args(argv)
 
@@ -281,7 +283,7 @@ def plan_from_args(args):
 
 
 def view_from_args(args, preset, plan):
-    """Heat map x, y (None with a single axis: one row), color column and pinned axes."""
+    """The plot's x, y (None with a single free axis: a line plot), column and pinned axes."""
     view = {**preset.get("heatmap", {}), **{k: v for k, v in
             {"x": args.x, "y": args.y, "color": args.color}.items() if v}}
     fixed = {}
@@ -306,7 +308,7 @@ class Command:
     preset: dict
     fmu: str
     md: object  # fmpy's ModelDescription
-    view: tuple  # heat map x, y, color column, pinned axes
+    view: tuple  # the plot's x, y, column, pinned axes
     workers: int
     paths: dict
 
@@ -338,9 +340,11 @@ def prepare(argv):
 def write_results(command, rows, summary):
     plan, paths = command.plan, command.paths
     write_csv(paths[".csv"], plan, rows)
-    svg = heatmap.render(rows, plan.grid, *command.view[:3], heatmap_units(command.md, plan),
-                         command.view[3], title=command.preset.get("title"))
-    paths[".svg"].write_text(svg)
+    from . import sweep_plot  # matplotlib only once there is something to draw
+
+    sweep_plot.write(paths[".csv"].with_suffix(""), rows, plan.grid, *command.view[:3],
+                     plot_units(command.md, plan), command.view[3],
+                     title=command.preset.get("title"), solver=plan.fixed.get("solver"))
     summary.update(grid=plan.grid, fixed=plan.fixed, outputs=[o.column for o in plan.outputs],
                    stop_time=str(plan.stop_time or "DefaultExperiment"),
                    step=str(plan.step or "DefaultExperiment"))
@@ -362,7 +366,7 @@ def main(argv=None):
         if not args.quiet:  # before the pool or the cluster starts, which takes seconds
             print(f"sweeping {command.md.modelName}: {len(command.plan.points())} points on "
                   f"{executor_label(args.scheduler, command.workers)}, writing "
-                  f"{command.paths['.csv']} (and .svg, .json)", file=sys.stderr, flush=True)
+                  f"{command.paths['.csv']} (and .png, .svg, .json)", file=sys.stderr, flush=True)
         # connects to the Dask scheduler before any point runs: no answer is a refusal too
         rows, summary = run_sweep(command.fmu, command.plan, scheduler=args.scheduler,
                                   workers=command.workers, ship=args.ship,

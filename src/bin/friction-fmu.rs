@@ -9,15 +9,20 @@
 //!                                    print each scene's tables beside the papers' and write
 //!                                    figures into DIR/figures (the default command)
 //!   friction-fmu report [--out DIR]  error against run time of every solver of every scene:
-//!                                    DIR/<scene>.md tables and DIR/<scene>.svg plots
-//!                                    (default DIR: report); trimmed scenes against the full
-//!                                    ones in DIR/trimmed.md; then prints the stability matrix
+//!                                    DIR/<scene>.md tables and DIR/<scene>.png/.svg plots
+//!                                    (default DIR: fmu-out/report); trimmed scenes against the
+//!                                    full ones in DIR/trimmed.md; then prints the stability
+//!                                    matrix
+//!
+//! Figures are written as data (DIR/<name>.csv and .json) and drawn into .png and .svg beside
+//! it by the Python package, with .venv's interpreter when it has matplotlib
+//! (report::figure::draw).
 
 use friction_fmu::{package, report, scene_file, scenes};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: friction-fmu [build [SCENE.toml...]|run|report] [--out DIR] [--version]\n  (no command: run)\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out) and the drive-coupled system into DIR/DriveFriction.ssp\n          or, given scene files, each into DIR/<name>.fmu with only the variables it keeps\n  run     build, pack scenes/*.toml into DIR/scenes, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.svg (default DIR: fmu-out/report), trimmed against full scenes: DIR/trimmed.md, then the stability matrix";
+const USAGE: &str = "usage: friction-fmu [build [SCENE.toml...]|run|report] [--out DIR] [--version]\n  (no command: run)\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out) and the drive-coupled system into DIR/DriveFriction.ssp\n          or, given scene files, each into DIR/<name>.fmu with only the variables it keeps\n  run     build, pack scenes/*.toml into DIR/scenes, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.png/.svg (default DIR: fmu-out/report), trimmed against full scenes: DIR/trimmed.md, then the stability matrix\n  figures are written as data (.csv, .json) and drawn into .png and .svg by .venv/bin/python -m friction_fmu.figures DIR";
 
 /// The FMU libraries of every model and platform whose toolchain is installed, built from the
 /// source tree this program was built from.
@@ -109,17 +114,24 @@ fn run(out: &Path) -> Result<(), String> {
     report::transverse::print_summary(&figures).map_err(|e| e.to_string())?;
     println!();
     report::oscillator::print_summary(&figures).map_err(|e| e.to_string())?;
-    println!("\nfigures in {}", figures.display());
-    Ok(())
+    println!();
+    report::figure::draw(&figures)
 }
 
 fn work_precision(out: &Path) -> Result<(), String> {
     for path in report::work_precision::write_all(&report::cases::all(), out)? {
         println!("wrote {}", path.display());
     }
+    // Drawn before the long stages that follow; a failed drawing is reported at the end, the
+    // data being on disk already.
+    let drawn = report::figure::draw(out);
+    if let Err(message) = &drawn {
+        eprintln!("friction-fmu: {message}");
+    }
     let (path, table) = report::trimmed::write(out)?;
     println!("\n{table}wrote {}", path.display());
-    stability()
+    stability()?;
+    drawn.map_err(|_| "the report's figures were not drawn (the message above says why)".into())
 }
 
 /// The stability matrix runs the FMUs through the in-process driver, built where it is.

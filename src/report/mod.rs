@@ -1,6 +1,8 @@
-//! What the CLI prints and draws: tables beside the papers' numbers, and plots.
+//! What the CLI prints and draws: tables beside the papers' numbers, and the data of plots
+//! (figure.rs), drawn by the Python package.
 
 pub mod cases;
+pub mod figure;
 pub mod longitudinal;
 pub mod oscillator;
 pub mod progress;
@@ -10,7 +12,6 @@ pub mod progress;
     any(target_arch = "x86_64", target_arch = "aarch64")
 ))]
 pub mod stability;
-pub mod svg;
 pub mod transverse;
 pub mod trimmed;
 pub mod work_precision;

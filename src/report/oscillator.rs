@@ -7,7 +7,7 @@
 
 use crate::interface::oscillator::{vr, LAW, TABLE};
 use crate::interface::values::ValueSet;
-use crate::report::svg::{write_panels, Plot, Series};
+use crate::report::figure::{Figure, Panel, Series};
 use crate::scenes::oscillator::{steady_amplitude, trajectory};
 use std::io::{self, Write};
 use std::path::Path;
@@ -60,6 +60,8 @@ pub fn amplitude_errors() -> Result<Vec<(&'static str, Vec<f64>)>, String> {
     Ok(rows)
 }
 
+/// Prints the table and writes `oscillator_trigonometric.csv` (and `.json`), the data of the
+/// paper's Fig. 2 panels beside the exact solution, into `out_dir`.
 pub fn print_summary(out_dir: &Path) -> io::Result<()> {
     let mut out = io::stdout().lock();
     writeln!(
@@ -98,39 +100,45 @@ pub fn print_summary(out_dir: &Path) -> io::Result<()> {
             WIDTHS.len()
         )?;
     }
-    let figure = out_dir.join("oscillator_trigonometric.svg");
-    write_figure(&figure)?;
-    writeln!(out, "wrote {}", figure.display())?;
+    let path = figure()?
+        .write(out_dir, "oscillator_trigonometric")
+        .map_err(io::Error::other)?;
+    writeln!(out, "wrote {}", path.display())?;
     Ok(())
 }
 
 /// The paper's Fig. 2 panels (trigonometric law, D = 0.8) over two steady periods, with the
-/// exact switch model drawn beside it.
-fn write_figure(path: &Path) -> io::Result<()> {
+/// exact switch model drawn beside it. The paper letters its panels a, b, d, f, h, e; here they
+/// are in the order drawn, and the title names each.
+fn figure() -> io::Result<Figure> {
     let law = trajectory(&paper_values("trigonometric", 0.8), PERIODS, 2, 400)
         .map_err(io::Error::other)?;
     let exact =
         trajectory(&paper_values("exact", 0.8), PERIODS, 2, 400).map_err(io::Error::other)?;
-    let series = |samples: &[[f64; 5]], label: &str, x: usize, y: usize| {
-        Series::line(label, samples.iter().map(|s| (s[x], s[y])).collect())
+    // samples: t, u, u', H, C
+    let series = |samples: &[[f64; 5]], name: &str, x: usize, y: usize| {
+        Series::new(name, samples.iter().map(|s| (s[x], s[y])).collect())
     };
     let panel = |title: &str, x_label: &str, y_label: &str, x: usize, y: usize| {
-        Plot::new(title, x_label, y_label)
-            .add(series(&law, "trigonometric, D = 0.8", x, y))
-            .add(series(&exact, "exact", x, y))
+        let both = vec![
+            series(&law, "trigonometric", x, y),
+            series(&exact, "exact", x, y),
+        ];
+        Panel::lines(title, x_label, y_label, both)
     };
-    let plots = [
-        panel("a) displacement", "t (s)", "u (m)", 0, 1),
-        panel("b) velocity", "t (s)", "u' (m/s)", 0, 2),
-        panel("d) H as function of time", "t (s)", "H (N)", 0, 3),
-        panel("f) H as function of velocity", "u' (m/s)", "H (N)", 2, 3),
-        panel("h) phase trajectory", "u (m)", "u' (m/s)", 1, 2),
-        Plot::new("e) C as function of time", "t (s)", "C (N.s/m)").add(series(
-            &law,
-            "trigonometric, D = 0.8",
-            0,
-            4,
-        )),
+    // The exact law's slope is 0 (or undefined at the switch): the regularised law's alone.
+    let slope = vec![series(&law, "trigonometric", 0, 4)];
+    let panels = vec![
+        panel("displacement", "t (s)", "u (m)", 0, 1),
+        panel("velocity", "t (s)", "u' (m/s)", 0, 2),
+        panel("friction force against time", "t (s)", "H (N)", 0, 3),
+        panel("friction force against velocity", "u' (m/s)", "H (N)", 2, 3),
+        panel("phase trajectory", "u (m)", "u' (m/s)", 1, 2),
+        Panel::lines("slope C = dH/du' against time", "t (s)", "C (N s/m)", slope),
     ];
-    write_panels(&plots, 3, path)
+    let title =
+        "DryFrictionOscillator, paper O's Fig. 2: trigonometric law, D = 0.8, two steady periods";
+    Ok(Figure::new(title, 3, panels)
+        .label("trigonometric", "trigonometric, D = 0.8")
+        .label("exact", "exact switch model"))
 }

@@ -1,10 +1,11 @@
 //! Scene T's summary: a Fig. 8-like table of the steady mean of FFx over drive and vibration
-//! velocities, and a Fig. 5-like plot of FF, FFx, FFy over two vibration periods.
+//! velocities (and its heat map), and a Fig. 5-like plot of FF, FFx, FFy over two vibration
+//! periods, both as figure data (src/report/figure.rs).
 //!
 //! The paper's Fig. 8 values did not survive in our copy, so the table stands on its own; the
 //! trends it shows (mean FFx falls as va rises and as vd falls) are the paper's claims.
 
-use super::svg::{write_panels, Plot, Series};
+use super::figure::{Figure, Panel, Series};
 use crate::interface::transverse::{vr, INITIAL, TABLE};
 use crate::interface::values::ValueSet;
 use crate::scenes::transverse::Transverse;
@@ -51,7 +52,8 @@ fn steady_mean_ratio(vd: f64, va: f64, f: f64) -> Result<f64, String> {
     Ok(sum / f64::from(AVERAGE) / scene.fc)
 }
 
-fn print_table(out: &mut impl std::io::Write, f: f64) -> std::io::Result<()> {
+/// Prints the table at `f` and returns it, `[vd][va]` (NaN where the run failed).
+fn print_table(out: &mut impl std::io::Write, f: f64) -> std::io::Result<Vec<Vec<f64>>> {
     writeln!(
         out,
         "\nTransverseFriction: steady mean FFx / FC (Fig. 8), f = {f} Hz, split slip law"
@@ -61,29 +63,53 @@ fn print_table(out: &mut impl std::io::Write, f: f64) -> std::io::Result<()> {
         write!(out, "{:>8}", va * 1e3)?;
     }
     writeln!(out)?;
+    let mut table = Vec::new();
     for vd in VD {
         write!(out, "{:>12}", vd * 1e3)?;
+        let mut row = Vec::new();
         for va in VA {
             match steady_mean_ratio(vd, va, f) {
-                Ok(r) => write!(out, "{r:>8.4}")?,
-                Err(_) => write!(out, "{:>8}", "fail")?,
+                Ok(r) => {
+                    write!(out, "{r:>8.4}")?;
+                    row.push(r);
+                }
+                Err(_) => {
+                    write!(out, "{:>8}", "fail")?;
+                    row.push(f64::NAN);
+                }
             }
         }
         writeln!(out)?;
+        table.push(row);
     }
-    Ok(())
+    Ok(table)
+}
+
+/// The Fig. 8 tables as a heat map, one panel a frequency, in mm/s as printed.
+fn fig8(tables: Vec<(f64, Vec<Vec<f64>>)>) -> Figure {
+    let mm = |v: &[f64]| v.iter().map(|x| x * 1e3).collect::<Vec<_>>();
+    let panels = tables
+        .into_iter()
+        .map(|(f, values)| {
+            Panel::cells(
+                &format!("f = {} kHz", f / 1e3),
+                "vibration velocity amplitude va (mm/s)",
+                "drive velocity vd (mm/s)",
+                (mm(&VA), mm(&VD)),
+                values,
+            )
+        })
+        .collect();
+    let title = "TransverseFriction (split slip law): steady mean FFx / FC (paper T's Fig. 8)";
+    Figure::new(title, 2, panels).value_label("FFx_mean / FC")
 }
 
 /// FF, FFx, FFy over two periods after settling, for each drive velocity of Fig. 5.
-fn fig5(path: &Path) -> std::io::Result<()> {
+fn fig5() -> Figure {
     let (va, f) = (2e-3, 3000.0);
     let period = 1.0 / f;
     let samples = 100;
-    let mut plots = [
-        Plot::new("FF (f = 3 kHz, va = 2 mm/s)", "t - t0 (ms)", "FF (N)"),
-        Plot::new("FFx", "t - t0 (ms)", "FFx (N)"),
-        Plot::new("FFy", "t - t0 (ms)", "FFy (N)"),
-    ];
+    let mut series: [Vec<Series>; 3] = Default::default();
     for vd in [1e-4, 3e-4, 8e-4, 2e-3, 4e-3] {
         let v = values(vd, va, f);
         let Ok(mut scene) = Transverse::new(&v, 0.0) else {
@@ -106,23 +132,43 @@ fn fig5(path: &Path) -> std::io::Result<()> {
         if !ok {
             continue;
         }
-        let label = format!("vd = {} mm/s", vd * 1e3);
-        for (plot, trace) in plots.iter_mut().zip(traces) {
-            let p = std::mem::replace(plot, Plot::new("", "", ""));
-            *plot = p.add(Series::line(&label, trace));
+        let name = format!("vd = {} mm/s", vd * 1e3);
+        for (lines, trace) in series.iter_mut().zip(traces) {
+            lines.push(Series::new(&name, trace));
         }
     }
-    write_panels(&plots, 3, path)
+    let [ff, ffx, ffy] = series;
+    let panels = vec![
+        Panel::lines("friction force", "t - t0 (ms)", "FF (N)", ff),
+        Panel::lines("along the drive", "t - t0 (ms)", "FFx (N)", ffx),
+        Panel::lines("across the drive", "t - t0 (ms)", "FFy (N)", ffy),
+    ];
+    let title =
+        "TransverseFriction, f = 3 kHz, va = 2 mm/s: two periods after settling (paper T's Fig. 5)";
+    Figure::new(title, 3, panels)
 }
 
-/// Prints the Fig. 8-like table (3 and 2 kHz) and writes `transverse_fig5.svg` into `out_dir`.
+/// Prints the Fig. 8-like table (3 and 2 kHz) and writes the data of its heat map,
+/// `transverse_fig8.csv`, and of the Fig. 5-like plot, `transverse_fig5.csv` (each with its
+/// `.json`), into `out_dir`.
 pub fn print_summary(out_dir: &Path) -> std::io::Result<()> {
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
-    print_table(&mut out, 3000.0)?;
-    print_table(&mut out, 2000.0)?;
-    let path = out_dir.join("transverse_fig5.svg");
-    fig5(&path)?;
+    let mut tables = Vec::new();
+    for f in [3000.0, 2000.0] {
+        tables.push((f, print_table(&mut out, f)?));
+    }
+    let path = fig8(tables)
+        .write(out_dir, "transverse_fig8")
+        .map_err(std::io::Error::other)?;
+    writeln!(
+        out,
+        "mean FFx / FC over vd x va (Fig. 8): {}",
+        path.display()
+    )?;
+    let path = fig5()
+        .write(out_dir, "transverse_fig5")
+        .map_err(std::io::Error::other)?;
     writeln!(
         out,
         "FF, FFx, FFy over two periods (Fig. 5): {}",

@@ -1,14 +1,15 @@
 //! Error against run time : for one scene, every solver
 //! it offers over a range of steps or tolerances, the relative error of the quantity a user reads
 //! (a mean force, an amplitude) against a reference run far more accurate, the run time and the
-//! right-hand-side evaluations; written as a Markdown table and a log-log SVG plot.
+//! right-hand-side evaluations; written as a Markdown table and a log-log plot of error against
+//! CPU time (as figure data, src/report/figure.rs).
 //!
 //! The reference is the best solver at a setting well beyond the table's; a second reference at
 //! a neighbouring setting estimates its own error, which the table prints so a reader can check
 //! it is at least 100 times below the smallest error shown.
 
+use super::figure::{Figure, Panel, Series};
 use super::progress::Progress;
-use super::svg::{Plot, Series};
 use crate::cpu_clock::time_cpu;
 use crate::solve::Work;
 use std::fmt::Write as _;
@@ -43,11 +44,12 @@ pub type Runner = Box<dyn Fn(&Setting) -> Result<(f64, Work), String>>;
 
 /// One scene's work-precision study.
 pub struct Case {
-    /// File stem under the output directory (`longitudinal` writes longitudinal.md/.svg).
+    /// File stem under the output directory (`longitudinal` writes longitudinal.md, .csv and
+    /// .json).
     pub stem: &'static str,
     /// What is run, in a sentence (title of the table).
     pub title: String,
-    /// A title short enough for the plot (SVG cannot wrap text).
+    /// A title short enough for the plot's one line.
     pub short_title: &'static str,
     /// The quantity whose error is measured.
     pub quantity: &'static str,
@@ -201,8 +203,10 @@ pub fn markdown(case: &Case, study: &Study) -> String {
     s
 }
 
-pub fn plot(case: &Case, study: &Study) -> Plot {
-    let mut plot = Plot::new(case.short_title, "CPU time (s)", "relative error").log_log();
+/// Error against CPU time, one line per solver (named by its `solver` item, so the drawing gives
+/// it the colour and marker it has in every figure), a marker at each setting.
+pub fn figure(case: &Case, study: &Study) -> Figure {
+    let mut series = Vec::new();
     let mut solvers: Vec<&str> = Vec::new();
     for r in &study.rows {
         if !solvers.contains(&r.setting.solver) {
@@ -216,12 +220,15 @@ pub fn plot(case: &Case, study: &Study) -> Plot {
             .filter(|r| r.setting.solver == solver)
             .filter_map(|r| r.error.map(|e| (r.seconds, e)))
             .collect();
-        plot = plot.add(Series::line(solver, points).with_markers());
+        series.push(Series::new(solver, points));
     }
-    plot
+    let y_label = format!("relative error of {}", case.quantity);
+    let panel = Panel::lines("", "CPU time (s)", &y_label, series).log_log();
+    Figure::new(case.short_title, 1, vec![panel]).with_markers()
 }
 
-/// Runs every case and writes `<out>/<stem>.md` and `<out>/<stem>.svg`; returns the paths.
+/// Runs every case and writes `<out>/<stem>.md` and the plot's data, `<out>/<stem>.csv` and
+/// `.json`; returns the paths of the tables and of the CSV files.
 pub fn write_all(cases: &[Case], out: &Path) -> Result<Vec<PathBuf>, String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let total: usize = cases.iter().map(|c| c.settings.len() + 1).sum();
@@ -232,13 +239,70 @@ pub fn write_all(cases: &[Case], out: &Path) -> Result<Vec<PathBuf>, String> {
         let md = out.join(format!("{}.md", case.stem));
         std::fs::write(&md, markdown(case, &study))
             .map_err(|e| format!("{}: {e}", md.display()))?;
-        let svg = out.join(format!("{}.svg", case.stem));
-        plot(case, &study)
-            .write(&svg)
-            .map_err(|e| format!("{}: {e}", svg.display()))?;
+        let csv = figure(case, &study).write(out, case.stem)?;
         written.push(md);
-        written.push(svg);
+        written.push(csv);
     }
     progress.finish();
     Ok(written)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(solver: &'static str, knob: Knob, error: Option<f64>, seconds: f64) -> Row {
+        Row {
+            setting: Setting { solver, knob },
+            error,
+            seconds,
+            work: Work::default(),
+            failure: error
+                .is_none()
+                .then(|| "rk4: the state became non-finite".into()),
+        }
+    }
+
+    /// The plot's data: one series per solver in the order they first appear, a point per
+    /// setting that ran (CPU time, error), none for a failed one.
+    #[test]
+    fn figure_csv_has_one_row_per_setting_that_ran() {
+        let at = |rtol| Setting {
+            solver: "dopri5",
+            knob: Knob::Tolerance(rtol),
+        };
+        let case = Case {
+            stem: "scene",
+            title: "a scene".into(),
+            short_title: "a scene: error of FT_mean",
+            quantity: "FT_mean",
+            settings: Vec::new(),
+            reference: (at(1e-13), at(1e-12)),
+            run: Box::new(|_| Err("not run".into())),
+        };
+        let study = Study {
+            reference: 1.0,
+            reference_error: 1e-15,
+            rows: vec![
+                row("rk4", Knob::StepsPerPeriod(25), Some(1.5e-5), 2.5e-4),
+                row("dopri5", Knob::Tolerance(1e-3), Some(3e-6), 1.5e-4),
+                row("rk4", Knob::StepsPerPeriod(50), None, 1e-3),
+                row("rk4", Knob::StepsPerPeriod(100), Some(4.75e-8), 8.875e-4),
+            ],
+        };
+        let figure = figure(&case, &study);
+        assert_eq!(
+            figure.csv().unwrap(),
+            "panel,series,x,y\n\
+             0,rk4,2.5e-4,1.5e-5\n\
+             0,rk4,8.875e-4,4.75e-8\n\
+             0,dopri5,1.5e-4,3e-6\n"
+        );
+        let json = figure.json().unwrap();
+        assert!(json.contains("\"title\": \"a scene: error of FT_mean\""));
+        assert!(json.contains(
+            "\"x\": \"CPU time (s)\", \"y\": \"relative error of FT_mean\", \"log_x\": true, \"log_y\": true"
+        ));
+        assert!(json.contains("\"markers\": true"));
+    }
 }

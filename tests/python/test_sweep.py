@@ -1,11 +1,12 @@
 """Parameter sweeps (python/friction_fmu): each row equals a direct fmpy run of its point, the
 sweep's means agree with the scipy Radau reference, the local process pool and a Dask cluster
 write the same CSV, a refused point is recorded with the FMU's message, an output without a
-finite summary fails its point, the heat map has one cell per point, and the workers leave no
-extracted FMU behind. On the command line: every bad argument (plan, FMU file, grid file,
---out, scheduler) is refused in one line with exit status 2 before any point runs, a failed
-point makes the exit status 1, `local[:N]` starts its own Dask cluster, N/PARAM times use
-PARAM's start value when the plan does not set it, and a start line comes before any progress.
+finite summary fails its point, the heat map has one cell per point and a one-axis sweep is a
+line through each point (PNG and SVG), and the workers leave no extracted FMU behind. On the
+command line: every bad argument (plan, FMU file, grid file, --out, scheduler) is refused in
+one line with exit status 2 before any point runs, a failed point makes the exit status 1,
+`local[:N]` starts its own Dask cluster, N/PARAM times use PARAM's start value when the plan
+does not set it, and a start line comes before any progress.
 
 Runs are short (30 periods at 3 kHz) and grids tiny, so the file takes a few seconds, most of
 it starting the Dask clusters.
@@ -27,7 +28,7 @@ import pytest
 from conftest import ROOT, enum_value, fmu_path
 
 sys.path.insert(0, str(ROOT / "python"))
-from friction_fmu import heatmap, switches  # noqa: E402
+from friction_fmu import style, sweep_plot, switches  # noqa: E402
 from friction_fmu.grid import Output, Plan, Span  # noqa: E402
 from friction_fmu.sweep import main, run_sweep, write_csv  # noqa: E402
 
@@ -121,27 +122,38 @@ def test_local_processes_and_dask_cluster_write_the_same_csv(local, cluster, tmp
     assert a == b
 
 
+def _heat_maps(fig):
+    return [ax for ax in fig.axes if ax.get_label() != "<colorbar>" and ax.get_visible()]
+
+
 def test_heat_map_has_one_cell_per_point(local):
     grid = {**plan().grid, "f": [F]}
     rows = [{**r, "f": F} for r in local]
     units = {"vd": "m/s", "va": "m/s", "FFx_mean": "N"}
-    svg = heatmap.render(rows, grid, "va", "vd", "FFx_mean", units)
-    root = ET.fromstring(svg)
-    ns = "{http://www.w3.org/2000/svg}"
-    cells = [r for r in root.iter(f"{ns}rect") if r.get("class") == "cell"]
-    assert len(cells) == 3 * 2
-    gray = [c for c in cells if c.get("fill") == "#cccccc"]
-    assert len(gray) == 2
-    texts = [t.text for t in root.iter(f"{ns}text")]
-    assert "va (m/s)" in texts and "vd (m/s)" in texts and "FFx_mean (N)" in texts
-    # the color bar spans exactly the successful points' values
-    values = sorted(r["FFx_mean"] for r in local if r["status"] == "ok")
-    assert f"{values[0]:.4g}" in texts and f"{values[-1]:.4g}" in texts
-    # one panel per value of a faceted third axis
-    two = heatmap.render(rows + [{**r, "f": 2.0} for r in rows], {**grid, "f": [F, 2.0]},
-                         "va", "vd", "FFx_mean", units)
-    cells = [r for r in ET.fromstring(two).iter(f"{ns}rect") if r.get("class") == "cell"]
-    assert len(cells) == 2 * 3 * 2
+    (([pinned], values),) = sweep_plot.panels(rows, grid, "va", "vd", "FFx_mean")
+    assert pinned == ("f", F)  # the third axis, one value: a single panel
+    by_point = {(r["va"], r["vd"]): r.get("FFx_mean") for r in local}
+    assert values == [[by_point[(va, vd)] for va in grid["va"]] for vd in grid["vd"]]
+    assert sum(v is None for row in values for v in row) == 2  # the refused points
+    with style.context():
+        fig = sweep_plot.figure(rows, grid, "va", "vd", "FFx_mean", units)
+    (ax,) = _heat_maps(fig)
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("va (m/s)", "vd (m/s)")
+    cells = ax.collections[0].get_array()
+    assert cells.size == 3 * 2 and cells.mask.sum() == 2
+    (bar,) = [a for a in fig.axes if a.get_label() == "<colorbar>"]
+    assert bar.get_ylabel() == "FFx_mean (N)"
+    # the colour scale spans the successful points' values
+    ok = sorted(r["FFx_mean"] for r in local if r["status"] == "ok")
+    assert bar.get_ylim() == pytest.approx((ok[0], ok[-1]), rel=1e-12)
+    # one panel per value of a faceted third axis, all on one colour scale
+    with style.context():
+        two = sweep_plot.figure(rows + [{**r, "f": 2.0} for r in rows],
+                                {**grid, "f": [F, 2.0]}, "va", "vd", "FFx_mean", units)
+    panels = _heat_maps(two)
+    assert [a.get_title("left") for a in panels] == ["f = 3000", "f = 2"]
+    assert all(a.collections[0].get_array().size == 3 * 2 for a in panels)
+    assert len({a.collections[0].norm.vmax for a in panels}) == 1
 
 
 def test_fig8_grid_file_and_times_per_point():
@@ -187,14 +199,9 @@ def test_sweep_agrees_with_scipy_radau_reference():
         assert abs(row["FFx_mean"] / expected - 1.0) <= 1e-5, (row, expected)
 
 
-def _cells(svg):
-    ns = "{http://www.w3.org/2000/svg}"
-    return [r for r in ET.fromstring(svg).iter(f"{ns}rect") if r.get("class") == "cell"]
-
-
-def test_one_axis_sweep_draws_one_row(tmp_path):
-    """A single grid axis is one row of cells, one per point, each holding that point's value
-    in the CSV the same sweep wrote (no cell of a point that was not run)."""
+def test_one_axis_sweep_is_a_line_plot(tmp_path):
+    """A single grid axis is a line plot, PNG and SVG, through one point per grid value, each
+    the value in the CSV the same sweep wrote; a fixed solver gives the line its style."""
     out = tmp_path / "one"
     vds = [1e-4, 2e-4, 3e-4]
     code = main([fmu_path(MODEL), "--grid", "vd=" + ",".join(map(repr, vds)),
@@ -204,15 +211,21 @@ def test_one_axis_sweep_draws_one_row(tmp_path):
     assert code == 0
     with open(out.with_suffix(".csv")) as handle:
         rows = list(csv.DictReader(handle))
-    cells = _cells(out.with_suffix(".svg").read_text())
-    assert len(cells) == len(rows) == len(vds)
-    assert len({c.get("y") for c in cells}) == 1  # a single row
-    titles = [c.find("{http://www.w3.org/2000/svg}title").text for c in cells]
-    assert not any("missing" in t for t in titles)
-    assert all(c.get("fill") != "#cccccc" for c in cells)
-    for vd, row, title in zip(vds, rows, titles):
-        assert title == f"vd={vd}: {float(row['FFx_mean']):.6g}"
-        assert 0.0 < float(row["FFx_mean"]) < 1.2
+    assert out.with_suffix(".png").read_bytes().startswith(b"\x89PNG\r\n\x1a\n")
+    ET.fromstring(out.with_suffix(".svg").read_text())  # well-formed
+    values = [float(row["FFx_mean"]) for row in rows]
+    assert all(0.0 < v < 1.2 for v in values)
+    points = [{"vd": vd, "status": "ok", "FFx_mean": v} for vd, v in zip(vds, values)]
+    with style.context():
+        fig = sweep_plot.figure(points, {"vd": vds}, "vd", None, "FFx_mean", {"vd": "m/s"},
+                                solver="radau5")
+    (ax,) = fig.axes
+    assert len(ax.collections) == 0  # no heat map cells
+    (line,) = ax.get_lines()
+    assert list(line.get_xdata()) == vds and list(line.get_ydata()) == values
+    assert (line.get_color(), line.get_marker()) == (style.SOLVERS["radau5"].color,
+                                                     style.SOLVERS["radau5"].marker)
+    assert ax.get_xlabel() == "vd (m/s)"
 
 
 def _item_names(variable):
@@ -358,9 +371,9 @@ def _written(tmp_path):
 
 @pytest.mark.parametrize("out, files", [
     ("results/", ["results/TransverseFriction-sweep.csv", "results/TransverseFriction-sweep.json",
-                  "results/TransverseFriction-sweep.svg"]),
-    ("run.f2.5", ["run.f2.5.csv", "run.f2.5.json", "run.f2.5.svg"]),
-    ("run.csv", ["run.csv", "run.json", "run.svg"]),
+                  "results/TransverseFriction-sweep.png", "results/TransverseFriction-sweep.svg"]),
+    ("run.f2.5", ["run.f2.5.csv", "run.f2.5.json", "run.f2.5.png", "run.f2.5.svg"]),
+    ("run.csv", ["run.csv", "run.json", "run.png", "run.svg"]),
 ])
 def test_out_prefix_directory_and_dots(tmp_path, out, files):
     """A directory (ending in /, or existing) holds MODEL-sweep.*; a prefix keeps its dots."""
@@ -370,7 +383,7 @@ def test_out_prefix_directory_and_dots(tmp_path, out, files):
     assert main([fmu_path(MODEL), *SMALL, "--out", str(tmp_path / "existing")]) == 0
     assert [f for f in _written(tmp_path) if f.startswith("existing")] == [
         "existing/TransverseFriction-sweep.csv", "existing/TransverseFriction-sweep.json",
-        "existing/TransverseFriction-sweep.svg"]
+        "existing/TransverseFriction-sweep.png", "existing/TransverseFriction-sweep.svg"]
 
 
 def _free_port():
@@ -468,7 +481,7 @@ def test_start_line_comes_first_and_progress_is_plain_lines_off_a_terminal(tmp_p
     assert "\r" not in done.stderr and "\x1b" not in done.stderr
     lines = done.stderr.splitlines()
     assert lines[0] == (f"sweeping TransverseFriction: 2 points on local, 1 process, writing "
-                        f"{out}.csv (and .svg, .json)")
+                        f"{out}.csv (and .png, .svg, .json)")
     assert lines[-1].startswith("2/2  elapsed ")
     assert len(lines) <= 3  # a line every 5 s at most, and the last
 
