@@ -108,6 +108,10 @@ pub const INITIAL: EnumType = EnumType {
             "sliding",
             "Steady 1D sliding at the drive velocity (vd, or vd_in at the start): body at that velocity, drive stretched to pull FC, contact deflected by g(vd) along x; only the vibration's transient remains (body free only)",
         ),
+        (
+            "periodic",
+            "The periodic steady state under the vibration, found at initialization by shooting on the one-period map (body free, drive prescribed): FFx_mean is the steady value from the first period on; where no period-1 orbit is found, steady sliding, with a warning",
+        ),
     ],
 };
 

@@ -105,7 +105,11 @@ switch!(
 );
 switch!(
     /// Scene T's initial state.
-    InitialState = transverse::INITIAL { Rest = "rest", Sliding = "sliding" }
+    InitialState = transverse::INITIAL {
+        Rest = "rest",
+        Sliding = "sliding",
+        Periodic = "periodic",
+    }
 );
 switch!(
     /// Scene O's friction law.

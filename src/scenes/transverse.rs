@@ -32,6 +32,7 @@ use crate::solve::narrow::Narrow;
 use crate::solve::phase::{cos_turns, turns};
 use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
+use crate::solve::shooting;
 use crate::solve::{within_step_budget, Integrator, Ode, Work, MAX_DIM};
 use nalgebra::Vector2;
 use std::cell::Cell;
@@ -443,6 +444,8 @@ pub struct Transverse {
     pub work: Work,
     /// What the scope lets the scene skip.
     pub trim: Trim,
+    /// A warning for the first step (why the periodic start fell back to the transient).
+    notice: Option<String>,
 }
 
 /// The general scene's parts a trimmed scope lets go (none for the full model, which keeps one
@@ -489,6 +492,88 @@ impl Transverse {
 
     /// The scene for an interface that hides what `scope` lists.
     pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
+        let mut scene = Transverse::starting_from(values, start_time, scope, None)?;
+        if InitialState::read(values, vr::INITIAL)? == InitialState::Periodic {
+            if scene.drive == Drive::Input || scene.p.held {
+                return Err(
+                    "initial = periodic needs the body free and the drive prescribed (body = free, drive_source = prescribed): with an input drive the motion has no period known at initialization"
+                        .into(),
+                );
+            }
+            if let Err(why) = scene.settle_on_orbit(values, scope) {
+                scene.notice = Some(format!(
+                    "initial = periodic: {why}; the run starts from steady sliding instead and goes through the transient"
+                ));
+            }
+        }
+        Ok(scene)
+    }
+
+    /// The states the right-hand side reads, which make the motion's state.
+    fn coupled(&self) -> usize {
+        if self.trim.axial {
+            COUPLED_AXIAL
+        } else {
+            COUPLED
+        }
+    }
+
+    /// Replaces the initial state by the periodic orbit's at the start time, found by shooting
+    /// on the one-period map ([`crate::solve::shooting`]) with this scene's solver, from steady
+    /// sliding. The periods it integrates count in [`Transverse::work`].
+    fn settle_on_orbit(&mut self, values: &ValueSet, scope: &Scope) -> Result<(), String> {
+        let n = self.coupled();
+        let period = 1.0 / self.p.f;
+        let start_time = self.t;
+        let mut work = Work::default();
+        // The guess: a period from steady sliding, which settles the bristle, with the drive
+        // stretched to pull the mean friction force of that period (the vibration lowers it
+        // from FC), which the body's slow motion would take many periods to find.
+        let rtol = values.real(vr::TOLERANCE);
+        // The maps' values: the run's, with the tolerance the shooting asks of each map (the
+        // fixed-step solvers take their own steps whatever it is).
+        let at = |tolerance: f64| {
+            let mut v = values.clone();
+            v.set(vr::TOLERANCE, tolerance.max(rtol));
+            v
+        };
+        let coarse = at(1e-6);
+        let mut first = Transverse::starting_from(&coarse, start_time, scope, Some(&self.y[..n]))?;
+        let settled = first.do_step(period, &coarse);
+        work = work.plus(&first.work);
+        settled?;
+        let mut guess = first.y[..n].to_vec();
+        if self.p.kd > 0.0 {
+            guess[LAMBDA] = first.mean_ffx() / self.p.kd;
+        }
+        let mut map = |y0: &[f64], tolerance: f64| {
+            let values = at(tolerance);
+            let mut scene = Transverse::starting_from(&values, start_time, scope, Some(y0))?;
+            let result = scene.do_step(period, &values);
+            work = work.plus(&scene.work);
+            result?;
+            Ok(scene.y[..n].to_vec())
+        };
+        let scale = tolerance_scales(&self.p, self.vd());
+        let settling: Vec<bool> = (0..n).map(|j| j == ZX || j == ZY).collect();
+        let orbit = shooting::periodic_orbit(&guess, (&scale[..n], &settling), rtol, &mut map);
+        self.work = self.work.plus(&work);
+        let orbit = orbit?;
+        *self = Transverse {
+            work: self.work,
+            ..Transverse::starting_from(values, start_time, scope, Some(&orbit.state))?
+        };
+        Ok(())
+    }
+
+    /// The scene at `start_time` from the initial state the values ask for, or, given, from
+    /// `motion` (the states the right-hand side reads).
+    fn starting_from(
+        values: &ValueSet,
+        start_time: f64,
+        scope: &Scope,
+        motion: Option<&[f64]>,
+    ) -> Result<Self, String> {
         require_finite_start(start_time)?;
         let m = require_positive(values, vr::M)?;
         let mu = require_positive(values, vr::MU)?;
@@ -563,8 +648,10 @@ impl Transverse {
 
         // Initial state.
         let mut y = [0.0; MAX_DIM];
-        let sliding = InitialState::read(values, vr::INITIAL)? == InitialState::Sliding;
-        if sliding && !held && vd_start != 0.0 {
+        let sliding = InitialState::read(values, vr::INITIAL)? != InitialState::Rest;
+        if let Some(motion) = motion {
+            y[..motion.len()].copy_from_slice(motion);
+        } else if sliding && !held && vd_start != 0.0 {
             y[VX] = vd_start;
             y[LAMBDA] = if kd > 0.0 {
                 fc / kd * vd_start.signum()
@@ -620,6 +707,7 @@ impl Transverse {
             mean: PeriodMean::new(start_time, 1.0 / f),
             work: Work::default(),
             trim,
+            notice: None,
         })
     }
 
@@ -820,6 +908,9 @@ impl Scene for Transverse {
     }
 
     fn take_warning(&mut self) -> Option<String> {
+        if let Some(notice) = self.notice.take() {
+            return Some(notice);
+        }
         let Solver::Dopri5(d) = &mut self.solver else {
             return None;
         };

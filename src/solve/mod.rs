@@ -12,6 +12,7 @@ pub mod phase;
 pub mod radau;
 pub mod rk4;
 pub mod root;
+pub mod shooting;
 pub mod stiffness;
 
 /// The largest state vector any scene integrates (including quadrature states such as the
@@ -39,6 +40,17 @@ pub struct Work {
     pub steps: u64,
     pub rejected: u64,
     pub rhs_evaluations: u64,
+}
+
+impl Work {
+    /// The work of both.
+    pub fn plus(&self, other: &Work) -> Work {
+        Work {
+            steps: self.steps + other.steps,
+            rejected: self.rejected + other.rejected,
+            rhs_evaluations: self.rhs_evaluations + other.rhs_evaluations,
+        }
+    }
 }
 
 /// Advances `y` from `t0` to `t1`; an error says why the step could not be completed (the FMI

@@ -1,0 +1,147 @@
+//! The periodic orbit of a forced system: a fixed point of its one-period map P, found by
+//! Newton's method on P(y) - y (shooting), with the Jacobian from differences of P (the same
+//! solver, so the orbit is the one the scene then integrates) and Broyden's update after that.
+//!
+//! A transient approaches the orbit at the rate of the slowest Floquet multiplier, which for a
+//! lightly damped body is hundreds of periods to the tolerance; shooting costs one period per
+//! slow state for the Jacobian and one per iteration. States that settle within a period (a
+//! bristle's deflection: its multiplier is near 0) need no column of their own: the map
+//! forgets them, and the Jacobian's column is that of P(y) - y alone, -1 on the diagonal.
+//! Far from the orbit the maps are integrated to a looser tolerance, tightened with the
+//! residual (an inexact Newton method): only the last ones cost what a period of the run does.
+
+use nalgebra::{DMatrix, DVector};
+
+/// The one-period map: the state one period after `y`, integrated to the relative tolerance
+/// given (or why it could not be taken).
+pub type PeriodMap<'a> = dyn FnMut(&[f64], f64) -> Result<Vec<f64>, String> + 'a;
+
+/// The tolerance of the maps far from the orbit (the Jacobian's differences, the first
+/// iterations): Newton's step there needs a few digits, not the run's tolerance.
+const COARSE: f64 = 1e-6;
+
+/// What shooting found: the orbit's state, and how many periods it took to find it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Orbit {
+    pub state: Vec<f64>,
+    pub periods: usize,
+}
+
+/// The most Newton-Broyden iterations after the Jacobian.
+const MAX_ITERATIONS: usize = 12;
+
+/// Finds y with P(y) = y to `tolerance` in each component relative to `scale` (the size each
+/// state takes on the orbit), from `guess`; `settling` marks the states that settle within a
+/// period. Errors say why it did not converge: the caller falls back to the transient.
+pub fn periodic_orbit(
+    guess: &[f64],
+    (scale, settling): (&[f64], &[bool]),
+    tolerance: f64,
+    map: &mut PeriodMap,
+) -> Result<Orbit, String> {
+    let n = guess.len();
+    let mut periods = 0;
+    let coarse = COARSE.max(tolerance);
+    let mut residual = |y: &DVector<f64>, accuracy: f64, periods: &mut usize| {
+        *periods += 1;
+        let next = map(y.as_slice(), accuracy)?;
+        if next.len() != n || next.iter().any(|v| !v.is_finite()) {
+            return Err("the one-period map left the finite numbers".into());
+        }
+        Ok::<_, String>(DVector::from_vec(next) - y)
+    };
+    let size = |r: &DVector<f64>| {
+        r.iter()
+            .zip(scale)
+            .map(|(r, s)| (r / s).abs())
+            .fold(0.0, f64::max)
+    };
+    let mut y = DVector::from_column_slice(guess);
+    let mut r = residual(&y, coarse, &mut periods)?;
+    let mut accuracy = coarse;
+    if size(&r) <= tolerance && accuracy <= tolerance {
+        return Ok(Orbit {
+            state: y.as_slice().to_vec(),
+            periods,
+        });
+    }
+    // Differences of a map integrated to a relative tolerance rtol are good to about rtol / eps
+    // of the step eps; the square root of the tolerance balances that against the curvature.
+    let mut jacobian = -DMatrix::<f64>::identity(n, n);
+    for j in (0..n).filter(|&j| !settling.get(j).copied().unwrap_or(false)) {
+        let step = coarse.sqrt() * scale[j];
+        let mut shifted = y.clone();
+        shifted[j] += step;
+        let column = (residual(&shifted, coarse, &mut periods)? - &r) / step;
+        jacobian.set_column(j, &column);
+    }
+    for _ in 0..MAX_ITERATIONS {
+        let Some(delta) = jacobian.clone().lu().solve(&(-&r)) else {
+            return Err("the one-period map's Jacobian is singular".into());
+        };
+        let y_next = &y + &delta;
+        // A hundredth of the residual now is as close as the next step can come.
+        accuracy = (1e-2 * size(&r)).clamp(tolerance, coarse);
+        let r_next = residual(&y_next, accuracy, &mut periods)?;
+        if size(&r_next) <= tolerance && accuracy <= tolerance {
+            return Ok(Orbit {
+                state: y_next.as_slice().to_vec(),
+                periods,
+            });
+        }
+        if size(&r_next) > 1e3 * size(&r) {
+            return Err(format!(
+                "Newton's iteration diverged (residual {:.1e} of the states' scale)",
+                size(&r_next)
+            ));
+        }
+        // Broyden's rank-one update: the secant condition J delta = r_next - r.
+        let dd = delta.dot(&delta);
+        if dd > 0.0 {
+            let correction = (&r_next - &r - &jacobian * &delta) / dd;
+            jacobian += correction * delta.transpose();
+        }
+        (y, r) = (y_next, r_next);
+    }
+    Err(format!(
+        "no periodic orbit to the tolerance after {MAX_ITERATIONS} iterations (residual {:.1e} of the states' scale): the motion may not be period-1",
+        size(&r)
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Oracle: the closed form of the fixed point. A linear map is solved by the first Newton
+    /// step after the Jacobian, to the differences' accuracy, and by a second to round-off.
+    #[test]
+    fn finds_the_orbit_of_a_linear_map_in_one_step() {
+        let a = (-std::f64::consts::TAU).exp();
+        let mut map = |y: &[f64], _: f64| Ok(vec![a * y[0] + 0.5 * (1.0 - a)]);
+        let orbit = periodic_orbit(&[3.0], (&[1.0], &[false]), 1e-12, &mut map).unwrap();
+        assert!((orbit.state[0] - 0.5).abs() < 1e-12, "{orbit:?}");
+        assert!(orbit.periods <= 4, "{orbit:?}");
+    }
+
+    /// A nonlinear two-state map with a slow and a fast multiplier converges in a few
+    /// iterations; a map with no fixed point (a drift) is reported, not returned.
+    #[test]
+    fn converges_on_a_nonlinear_map_and_reports_a_drift() {
+        let mut map = |y: &[f64], _: f64| {
+            Ok(vec![
+                0.99 * y[0] + 0.01 * (1.0 + 0.3 * y[1] * y[1]),
+                0.01 * y[1] + 0.2 * y[0].sin(),
+            ])
+        };
+        let orbit =
+            periodic_orbit(&[0.0, 0.0], (&[1.0, 1.0], &[false, false]), 1e-12, &mut map).unwrap();
+        let next = map(&orbit.state, 0.0).unwrap();
+        for (a, b) in next.iter().zip(&orbit.state) {
+            assert!((a - b).abs() < 1e-12);
+        }
+        assert!(orbit.periods < 12, "{orbit:?}");
+        let mut drift = |y: &[f64], _: f64| Ok(vec![y[0] + 1.0]);
+        assert!(periodic_orbit(&[0.0], (&[1.0], &[false]), 1e-10, &mut drift).is_err());
+    }
+}
