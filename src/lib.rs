@@ -7,15 +7,19 @@
 // `unsafe`: each module that does is allowed it by name.
 #![deny(unsafe_code)]
 
+#[cfg(feature = "tools")]
 #[allow(unsafe_code)]
 pub mod cpu_clock;
 pub mod fmi2;
 pub mod friction;
+#[cfg(feature = "tools")]
 #[allow(unsafe_code)]
 pub mod importer;
 pub mod interface;
 pub mod model_description;
+#[cfg(feature = "tools")]
 pub mod package;
+#[cfg(feature = "tools")]
 pub mod report;
 pub mod scene_file;
 pub mod scenes;

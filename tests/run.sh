@@ -47,7 +47,9 @@ stage() {
 stage "cargo fmt --check"
 cargo fmt --check
 stage "cargo clippy"
-cargo clippy --all-targets --release -- -D warnings
+# In the tests' profile: the build scripts and procedural macros (bindgen's among them) are built
+# once for both.
+cargo clippy --all-targets --profile testing -- -D warnings
 stage "cargo test"
 # The testing profile (Cargo.toml) builds in target/testing: the main command's target/release is
 # left as it is, so neither rebuilds the other. It also builds the friction-fmu command, which
@@ -57,7 +59,7 @@ cargo test --profile testing
 BIN=target/testing/friction-fmu
 stage "fuzzing under valgrind memcheck (invalid reads and writes, use after free)"
 FUZZ_BIN=$(cargo test --profile testing --test fuzz_calls --no-run 2>&1 | grep -o 'target/testing/deps/fuzz_calls-[0-9a-f]*' | head -1)
-FUZZ_SEQUENCES=20000 valgrind --error-exitcode=9 --leak-check=no -q "$FUZZ_BIN" random_call_sequences
+FUZZ_SEQUENCES=10000 valgrind --error-exitcode=9 --leak-check=no -q "$FUZZ_BIN" random_call_sequences
 stage "packing the FMUs"
 $BIN build
 $BIN build scenes/*.toml --out fmu-out/scenes
