@@ -11,6 +11,7 @@ pub mod vr {
     pub const LAW: u32 = 1;
     pub const VELOCITY_SOURCE: u32 = 2;
     pub const NORMAL_FORCE_SOURCE: u32 = 6;
+    pub const INITIAL: u32 = 7;
     pub const SOLVER: u32 = 3;
     pub const STEPS_PER_PERIOD: u32 = 4;
     pub const TOLERANCE: u32 = 5;
@@ -75,6 +76,17 @@ pub const NORMAL_FORCE_SOURCE: EnumType = EnumType {
     ],
 };
 
+pub const INITIAL: EnumType = EnumType {
+    name: "LongitudinalInitialState",
+    items: &[
+        ("rest", "Bristle undeflected at the start"),
+        (
+            "periodic",
+            "The periodic steady state under the prescribed velocity, found at initialization by shooting on the one-period map: FT_mean and S are the steady values from the first period on",
+        ),
+    ],
+};
+
 pub const SOLVER: EnumType = EnumType {
     name: "LongitudinalSolver",
     items: &[
@@ -111,6 +123,13 @@ const VARIABLES: &[Variable] = &[
         vr::NORMAL_FORCE_SOURCE,
         "Where the normal force comes from",
         NORMAL_FORCE_SOURCE.name,
+        1,
+    ),
+    enum_parameter(
+        "initial",
+        vr::INITIAL,
+        "Initial state",
+        INITIAL.name,
         1,
     ),
     // dopri5 (item 3): the fastest to reach a relative error of 1e-6 in the work-precision
@@ -297,7 +316,7 @@ pub const TABLE: ModelTable = ModelTable {
     model_identifier: "LongitudinalFriction",
     description: "Sliding friction under longitudinal tangential contact vibration: Coulomb, Dahl and LuGre (Leus & Gutowski 2008)",
     variables: VARIABLES,
-    enum_types: &[LAW, VELOCITY_SOURCE, NORMAL_FORCE_SOURCE, SOLVER],
+    enum_types: &[LAW, VELOCITY_SOURCE, NORMAL_FORCE_SOURCE, INITIAL, SOLVER],
     input_switches: &[
         InputSwitch {
             switch: "velocity_source",

@@ -14,6 +14,7 @@ pub mod vr {
     pub const STEPS_PER_PERIOD: u32 = 4;
     pub const RTOL: u32 = 5;
     pub const ATOL: u32 = 6;
+    pub const INITIAL: u32 = 7;
     pub const M: u32 = 10;
     pub const C: u32 = 11;
     pub const K: u32 = 12;
@@ -89,6 +90,17 @@ pub const SOLVER: EnumType = EnumType {
     ],
 };
 
+pub const INITIAL: EnumType = EnumType {
+    name: "OscillatorInitialState",
+    items: &[
+        ("given", "u = u0 and u' = v0 at the start"),
+        (
+            "periodic",
+            "The periodic steady state under the prescribed force, found at initialization by shooting on the one-period map from (u0, v0): u_amplitude is the steady value from the first period on; where no period-1 orbit is found, (u0, v0), with a warning",
+        ),
+    ],
+};
+
 const VARIABLES: &[Variable] = &[
     enum_parameter("law", vr::LAW, "Dry-friction law", LAW.name, 2),
     enum_parameter(
@@ -99,6 +111,7 @@ const VARIABLES: &[Variable] = &[
         1,
     ),
     enum_parameter("solver", vr::SOLVER, "Integration scheme", SOLVER.name, 1),
+    enum_parameter("initial", vr::INITIAL, "Initial state", INITIAL.name, 1),
     integer_parameter(
         "steps_per_period",
         vr::STEPS_PER_PERIOD,
@@ -211,7 +224,7 @@ pub const TABLE: ModelTable = ModelTable {
     model_identifier: "DryFrictionOscillator",
     description: "Forced oscillator with dry friction: regularised laws (paper O, eq. 4-9) and the exact switch model",
     variables: VARIABLES,
-    enum_types: &[LAW, FORCE_SOURCE, SOLVER],
+    enum_types: &[LAW, FORCE_SOURCE, SOLVER, INITIAL],
     input_switches: &[InputSwitch {
         switch: "force_source",
         item: "input",

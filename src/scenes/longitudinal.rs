@@ -20,12 +20,15 @@
 mod ode;
 
 use super::period_mean::PeriodMean;
-use super::switch::{LongitudinalLaw, NormalForceSource, Switch, VelocitySource};
+use super::switch::{
+    LongitudinalInitialState, LongitudinalLaw, NormalForceSource, Switch, VelocitySource,
+};
 use super::{require_passive, require_positive, resolved_energy, Scene, Scope};
 use crate::friction::{coulomb, dahl::Dahl, lugre::LuGre, sgn};
 use crate::interface::longitudinal::vr;
 use crate::interface::values::ValueSet;
 use crate::solve::phase::turns;
+use crate::solve::shooting;
 use crate::solve::{within_step_budget, Work};
 use ode::Solver;
 use std::f64::consts::TAU;
@@ -135,6 +138,8 @@ pub struct Longitudinal {
     pub ode_dim: usize,
     /// FT_mean or S is read: sub-steps end on period boundaries.
     pub tracks_mean: bool,
+    /// A warning for the first step (why the periodic start fell back to the transient).
+    notice: Option<String>,
 }
 
 /// The vibration as the equations see it: frequency `f` and phase `phase0` (turns) at their
@@ -185,6 +190,68 @@ impl Longitudinal {
     /// The scene for an interface that hides what `scope` lists. (Coulomb has no bristle state
     /// in the full model already: z stays 0 and the force is integrated in closed form.)
     pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
+        let mut scene = Longitudinal::at_rest(values, start_time, scope)?;
+        let initial = LongitudinalInitialState::read(values, vr::INITIAL)?;
+        if initial == LongitudinalInitialState::Periodic {
+            if scene.velocity == Velocity::Input || scene.load.is_some() {
+                return Err(
+                    "initial = periodic needs the velocity prescribed and the weight as the normal force (velocity_source = prescribed, normal_force_source = weight): with an input the motion has no period known at initialization"
+                        .into(),
+                );
+            }
+            if scene.law != Law::Coulomb {
+                if let Err(why) = scene.settle_on_orbit(values, scope) {
+                    scene.notice = Some(format!(
+                        "initial = periodic: {why}; the run starts from rest instead and goes through the transient"
+                    ));
+                }
+            }
+        }
+        Ok(scene)
+    }
+
+    /// Replaces the undeflected bristle by the periodic orbit's deflection at the start time,
+    /// found by shooting on the one-period map ([`crate::solve::shooting`]) with this scene's
+    /// solver, from a period after rest. (Coulomb has no state: its first period is steady.)
+    /// The periods it integrates count in [`Longitudinal::work`].
+    fn settle_on_orbit(&mut self, values: &ValueSet, scope: &Scope) -> Result<(), String> {
+        let period = 1.0 / self.f;
+        let start_time = self.t;
+        let rtol = values.real(vr::TOLERANCE);
+        let at = |tolerance: f64| {
+            let mut v = values.clone();
+            v.set(vr::TOLERANCE, tolerance.max(rtol));
+            v
+        };
+        let mut work = Work::default();
+        let mut map = |z0: &[f64], tolerance: f64| {
+            let values = at(tolerance);
+            let mut scene = Longitudinal::at_rest(&values, start_time, scope)?;
+            scene.z = z0[0];
+            let result = scene.do_step(period, &values);
+            work = work.plus(&scene.work);
+            result?;
+            Ok(vec![scene.z])
+        };
+        let scale = (self.fc / self.stiffness()).min(self.slip_per_period());
+        let orbit = map(&[0.0], 1e-6).and_then(|guess| {
+            shooting::periodic_orbit(&guess, (&[scale], &[false]), rtol, &mut map)
+        });
+        self.work = self.work.plus(&work);
+        self.z = orbit?.state[0];
+        Ok(())
+    }
+
+    /// The farthest the contact can slide in a period (the prescribed velocity's).
+    fn slip_per_period(&self) -> f64 {
+        match self.velocity {
+            Velocity::Prescribed { vc, va } => (vc.abs() + va) / self.f,
+            Velocity::Input => f64::INFINITY,
+        }
+    }
+
+    /// The scene at `start_time` with the bristle undeflected.
+    fn at_rest(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
         let m = require_positive(values, vr::M)?;
         let mu = require_positive(values, vr::MU)?;
         let g = require_positive(values, vr::G)?;
@@ -281,6 +348,7 @@ impl Longitudinal {
                 1
             },
             tracks_mean,
+            notice: None,
         })
     }
 
@@ -654,6 +722,9 @@ impl Scene for Longitudinal {
     }
 
     fn take_warning(&mut self) -> Option<String> {
+        if let Some(notice) = self.notice.take() {
+            return Some(notice);
+        }
         let t = self.solver.stiff_since()?;
         Some(super::stiff_warning(t, "radau5 or exponential"))
     }

@@ -15,12 +15,14 @@
 pub mod exact;
 mod solver;
 
-use super::switch::{ForceSource, OscillatorLaw, OscillatorSolver, Switch as _};
+use super::switch::{
+    ForceSource, OscillatorInitialState, OscillatorLaw, OscillatorSolver, Switch as _,
+};
 use super::{require_finite, require_non_negative, require_positive, Scene, Scope};
 use crate::friction::regularized::{stiction_excess, Regularized};
 use crate::interface::oscillator::vr;
 use crate::interface::values::ValueSet;
-use crate::solve::{within_step_budget, Ode, Work};
+use crate::solve::{shooting, within_step_budget, Ode, Work};
 use exact::{Event, Mode, State, Switch};
 use solver::Solver;
 use std::f64::consts::TAU;
@@ -203,6 +205,76 @@ impl Oscillator {
 
     /// The scene for an interface that hides what `scope` lists.
     pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
+        let mut scene = Oscillator::from_given(values, start_time, scope)?;
+        if OscillatorInitialState::read(values, vr::INITIAL)? == OscillatorInitialState::Periodic {
+            if ForceSource::read(values, vr::FORCE_SOURCE)? == ForceSource::Input {
+                return Err(
+                    "initial = periodic needs the force prescribed (force_source = prescribed): with an input force the motion has no period known at initialization"
+                        .into(),
+                );
+            }
+            if let Err(why) = scene.settle_on_orbit(values, scope) {
+                let notice = format!(
+                    "initial = periodic: {why}; the run starts from (u0, v0) instead and goes through the transient"
+                );
+                scene.unresolved = Some(match scene.unresolved.take() {
+                    Some(before) => format!("{before}; {notice}"),
+                    None => notice,
+                });
+            }
+        }
+        Ok(scene)
+    }
+
+    /// Replaces (u0, v0) by the periodic orbit's state at the start time, found by shooting on
+    /// the one-period map ([`crate::solve::shooting`]) with this scene's law and solver, from a
+    /// period after (u0, v0). The periods it integrates count in [`Oscillator::work`].
+    fn settle_on_orbit(&mut self, values: &ValueSet, scope: &Scope) -> Result<(), String> {
+        let period = self.amplitude.period;
+        let start_time = self.state.t;
+        let rtol = values.real(vr::RTOL);
+        let at = |y: &[f64], tolerance: f64| {
+            let mut v = values.clone();
+            v.set(vr::U0, y[0]);
+            v.set(vr::V0, y[1]);
+            v.set(vr::RTOL, tolerance.max(rtol));
+            v
+        };
+        let mut work = Work::default();
+        let swing = std::cell::Cell::new(0.0_f64);
+        let mut map = |y: &[f64], tolerance: f64| {
+            let values = at(y, tolerance);
+            let mut scene = Oscillator::from_given(&values, start_time, scope)?;
+            let result = scene.do_step(period, &values);
+            work = work.plus(&scene.work);
+            result?;
+            swing.set(
+                swing
+                    .get()
+                    .max(scene.amplitude.running.max(scene.amplitude.last)),
+            );
+            Ok(vec![scene.state.u, scene.state.v])
+        };
+        let orbit = map(&[self.state.u, self.state.v], 1e-6).and_then(|guess| {
+            // The states' scale: the swing of that first period (the atol where it is still).
+            let u_scale = swing.get().max(values.real(vr::ATOL));
+            let w = values.real(vr::W);
+            let scale = [u_scale, u_scale * w];
+            shooting::periodic_orbit(&guess, (&scale, &[false, false]), rtol, &mut map)
+        });
+        self.work = self.work.plus(&work);
+        let orbit = orbit?;
+        let values = at(&orbit.state, rtol);
+        *self = Oscillator {
+            work: self.work,
+            unresolved: self.unresolved.take(),
+            ..Oscillator::from_given(&values, start_time, scope)?
+        };
+        Ok(())
+    }
+
+    /// The scene at `start_time` from (u0, v0).
+    fn from_given(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
         let m = require_positive(values, vr::M)?;
         let c = require_non_negative(values, vr::C)?;
         let k = require_non_negative(values, vr::K)?;

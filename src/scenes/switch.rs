@@ -73,6 +73,10 @@ switch!(
     NormalForceSource = longitudinal::NORMAL_FORCE_SOURCE { Weight = "weight", Input = "input" }
 );
 switch!(
+    /// Scene L's initial state.
+    LongitudinalInitialState = longitudinal::INITIAL { Rest = "rest", Periodic = "periodic" }
+);
+switch!(
     /// Scene L's integration scheme.
     LongitudinalSolver = longitudinal::SOLVER {
         Exponential = "exponential",
@@ -131,6 +135,10 @@ switch!(
     OscillatorSolver = oscillator::SOLVER { Radau5 = "radau5", Dopri5 = "dopri5", Rk4 = "rk4" }
 );
 switch!(
+    /// Scene O's initial state.
+    OscillatorInitialState = oscillator::INITIAL { Given = "given", Periodic = "periodic" }
+);
+switch!(
     /// Where the drive's armature voltage comes from.
     VoltageSource = drive::VOLTAGE_SOURCE { Parameter = "parameter", Input = "input" }
 );
@@ -156,6 +164,7 @@ mod tests {
             names::<LongitudinalLaw>(),
             names::<VelocitySource>(),
             names::<NormalForceSource>(),
+            names::<LongitudinalInitialState>(),
             names::<LongitudinalSolver>(),
             names::<SlipLaw>(),
             names::<TransverseSolver>(),
@@ -165,6 +174,7 @@ mod tests {
             names::<OscillatorLaw>(),
             names::<ForceSource>(),
             names::<OscillatorSolver>(),
+            names::<OscillatorInitialState>(),
             names::<VoltageSource>(),
             names::<DriveSolver>(),
         ];

@@ -324,3 +324,46 @@ fn a_restored_state_keeps_the_derivatives_set_for_the_step() {
         c.save()[1]
     });
 }
+
+/// Oracle: the transient after 40 periods (the bristle forgets its start within a few). With
+/// `initial = periodic` the first period's FT_mean is that steady value, for every law and
+/// solver; a run with an input velocity has no period to find and is refused.
+#[test]
+fn a_periodic_start_is_steady_from_the_first_period() {
+    use crate::interface::longitudinal::INITIAL;
+    for law in ["coulomb", "dahl", "lugre"] {
+        for solver in ["dopri5", "radau5", "exponential", "rk4"] {
+            let mut v = values(law, solver);
+            v.set(vr::TOLERANCE, 1e-10);
+            let steady = steady_mean_force(&v, 40).unwrap();
+            let transient = steady_mean_force(&v, 1).unwrap();
+            v.set(
+                vr::INITIAL,
+                f64::from(INITIAL.value_of("periodic").unwrap()),
+            );
+            let mut scene = Longitudinal::new(&v, 0.0).unwrap();
+            assert_eq!(scene.notice, None, "{law} {solver}");
+            scene.do_step(1.0 / F, &v).unwrap();
+            let error = (scene.mean_force() / steady - 1.0).abs();
+            assert!(
+                error < 1e-9,
+                "{law} {solver}: {error:e} after one period (from rest: {:e})",
+                (transient / steady - 1.0).abs()
+            );
+        }
+    }
+    let mut v = with_inputs(values("dahl", "dopri5"), true, false);
+    v.set(
+        vr::INITIAL,
+        f64::from(
+            crate::interface::longitudinal::INITIAL
+                .value_of("periodic")
+                .unwrap(),
+        ),
+    );
+    let refused = Longitudinal::new(&v, 0.0).unwrap_err();
+    assert!(
+        refused.contains("velocity_source = prescribed"),
+        "{refused}"
+    );
+}

@@ -493,3 +493,63 @@ fn an_unresolved_linear_stiction_band_is_said_once() {
         }
     }
 }
+
+/// Oracles: without friction the closed-form steady amplitude p / |k - m w^2 + i c w|; with it,
+/// the transient after 200 forcing periods (it decays by about half a period). With `initial =
+/// periodic` the first period's u_amplitude is the steady one, for every law; an input force has
+/// no period to find and is refused.
+#[test]
+fn a_periodic_start_is_steady_from_the_first_period() {
+    use crate::interface::oscillator::INITIAL;
+    let periodic = f64::from(INITIAL.value_of("periodic").unwrap());
+    let amplitude_after = |v: &ValueSet, periods: u32| {
+        let mut scene = Oscillator::new(v, 0.0).unwrap();
+        let period = scene.amplitude.period;
+        for _ in 0..periods {
+            scene.do_step(period, v).unwrap();
+        }
+        assert_eq!(scene.unresolved, None);
+        scene.amplitude.last
+    };
+    let laws = [
+        "linear",
+        "trigonometric",
+        "linear_stiction",
+        "trigonometric_stiction",
+        "exact",
+        "exact_stiction",
+    ];
+    for law in laws {
+        let mut v = values(law);
+        v.set(vr::RTOL, 1e-10);
+        v.set(vr::H, 0.0);
+        let (m, c, k, p, w) = ["m", "c", "k", "P", "w"]
+            .map(|n| v.real(TABLE.by_name(n).unwrap().value_reference))
+            .into();
+        let exact = p / ((k - m * w * w).powi(2) + (c * w).powi(2)).sqrt();
+        v.set(vr::INITIAL, periodic);
+        let first = amplitude_after(&v, 1);
+        assert!(
+            (first / exact - 1.0).abs() < 1e-8,
+            "{law}, h = 0: {first} vs {exact}"
+        );
+
+        let mut v = values(law);
+        v.set(vr::RTOL, 1e-10);
+        let steady = amplitude_after(&v, 200);
+        v.set(vr::INITIAL, periodic);
+        let first = amplitude_after(&v, 1);
+        assert!(
+            (first / steady - 1.0).abs() < 1e-7,
+            "{law}: {first} vs {steady}"
+        );
+    }
+    let mut v = values("exact");
+    v.set(vr::INITIAL, periodic);
+    v.set(
+        vr::FORCE_SOURCE,
+        f64::from(FORCE_SOURCE.value_of("input").unwrap()),
+    );
+    let refused = Oscillator::new(&v, 0.0).unwrap_err();
+    assert!(refused.contains("force_source = prescribed"), "{refused}");
+}
