@@ -67,8 +67,9 @@ pub fn periodic_orbit(
     }
     // Differences of a map integrated to a relative tolerance rtol are good to about rtol / eps
     // of the step eps; the square root of the tolerance balances that against the curvature.
+    let slow = (0..n).filter(|&j| !settling.get(j).copied().unwrap_or(false));
     let mut jacobian = -DMatrix::<f64>::identity(n, n);
-    for j in (0..n).filter(|&j| !settling.get(j).copied().unwrap_or(false)) {
+    for j in slow.clone() {
         let step = coarse.sqrt() * scale[j];
         let mut shifted = y.clone();
         shifted[j] += step;
@@ -84,6 +85,26 @@ pub fn periodic_orbit(
         accuracy = (1e-2 * size(&r)).clamp(tolerance, coarse);
         let r_next = residual(&y_next, accuracy, &mut periods)?;
         if size(&r_next) <= tolerance && accuracy <= tolerance {
+            // Newton's method finds unstable orbits as readily as stable ones, and the motion
+            // never settles on those: the eigenvalues of the map's Jacobian at the orbit (its
+            // Floquet multipliers) must lie inside the unit circle. Broyden's updates know that
+            // Jacobian only along the steps taken, so it is differenced again there.
+            let mut map_jacobian = DMatrix::<f64>::zeros(n, n);
+            for j in slow.clone() {
+                let step = coarse.sqrt() * scale[j];
+                let mut shifted = y_next.clone();
+                shifted[j] += step;
+                let column = (residual(&shifted, coarse, &mut periods)? - &r_next) / step;
+                map_jacobian.set_column(j, &column);
+                map_jacobian[(j, j)] += 1.0;
+            }
+            let multipliers = map_jacobian.complex_eigenvalues();
+            let largest = multipliers.iter().map(|m| m.norm()).fold(0.0, f64::max);
+            if largest > 1.0 {
+                return Err(format!(
+                    "the period-1 orbit found is unstable (a Floquet multiplier of size {largest:.3}): the motion settles elsewhere, maybe on a longer period"
+                ));
+            }
             return Ok(Orbit {
                 state: y_next.as_slice().to_vec(),
                 periods,
@@ -121,7 +142,7 @@ mod tests {
         let mut map = |y: &[f64], _: f64| Ok(vec![a * y[0] + 0.5 * (1.0 - a)]);
         let orbit = periodic_orbit(&[3.0], (&[1.0], &[false]), 1e-12, &mut map).unwrap();
         assert!((orbit.state[0] - 0.5).abs() < 1e-12, "{orbit:?}");
-        assert!(orbit.periods <= 4, "{orbit:?}");
+        assert!(orbit.periods <= 5, "{orbit:?}");
     }
 
     /// A nonlinear two-state map with a slow and a fast multiplier converges in a few
@@ -140,8 +161,12 @@ mod tests {
         for (a, b) in next.iter().zip(&orbit.state) {
             assert!((a - b).abs() < 1e-12);
         }
-        assert!(orbit.periods < 12, "{orbit:?}");
+        assert!(orbit.periods < 15, "{orbit:?}");
         let mut drift = |y: &[f64], _: f64| Ok(vec![y[0] + 1.0]);
         assert!(periodic_orbit(&[0.0], (&[1.0], &[false]), 1e-10, &mut drift).is_err());
+        // y -> 2 y - 1 has the fixed point 1, which repels: refused as unstable.
+        let mut repelling = |y: &[f64], _: f64| Ok(vec![2.0 * y[0] - 1.0]);
+        let refused = periodic_orbit(&[0.5], (&[1.0], &[false]), 1e-10, &mut repelling);
+        assert!(refused.unwrap_err().contains("unstable"));
     }
 }
