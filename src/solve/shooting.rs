@@ -65,17 +65,25 @@ pub fn periodic_orbit(
             periods,
         });
     }
-    // Differences of a map integrated to a relative tolerance rtol are good to about rtol / eps
-    // of the step eps; the square root of the tolerance balances that against the curvature.
-    let slow = (0..n).filter(|&j| !settling.get(j).copied().unwrap_or(false));
-    let mut jacobian = -DMatrix::<f64>::identity(n, n);
-    for j in slow.clone() {
-        let step = coarse.sqrt() * scale[j];
-        let mut shifted = y.clone();
-        shifted[j] += step;
-        let column = (residual(&shifted, coarse, &mut periods)? - &r) / step;
-        jacobian.set_column(j, &column);
-    }
+    // The residual's Jacobian at y (where it is r), the slow states' columns differenced with
+    // coarse maps. Differences of a map integrated to a relative tolerance rtol are good to
+    // about rtol / eps of the step eps; the square root of the tolerance balances that against
+    // the curvature.
+    type Residual<'r> =
+        dyn FnMut(&DVector<f64>, f64, &mut usize) -> Result<DVector<f64>, String> + 'r;
+    let differenced =
+        |residual: &mut Residual, y: &DVector<f64>, r: &DVector<f64>, periods: &mut usize| {
+            let mut jacobian = -DMatrix::<f64>::identity(n, n);
+            for j in (0..n).filter(|&j| !settling.get(j).copied().unwrap_or(false)) {
+                let step = coarse.sqrt() * scale[j];
+                let mut shifted = y.clone();
+                shifted[j] += step;
+                let column = (residual(&shifted, coarse, periods)? - r) / step;
+                jacobian.set_column(j, &column);
+            }
+            Ok::<_, String>(jacobian)
+        };
+    let mut jacobian = differenced(&mut residual, &y, &r, &mut periods)?;
     for _ in 0..MAX_ITERATIONS {
         let Some(delta) = jacobian.clone().lu().solve(&(-&r)) else {
             return Err("the one-period map's Jacobian is singular".into());
@@ -89,15 +97,8 @@ pub fn periodic_orbit(
             // never settles on those: the eigenvalues of the map's Jacobian at the orbit (its
             // Floquet multipliers) must lie inside the unit circle. Broyden's updates know that
             // Jacobian only along the steps taken, so it is differenced again there.
-            let mut map_jacobian = DMatrix::<f64>::zeros(n, n);
-            for j in slow.clone() {
-                let step = coarse.sqrt() * scale[j];
-                let mut shifted = y_next.clone();
-                shifted[j] += step;
-                let column = (residual(&shifted, coarse, &mut periods)? - &r_next) / step;
-                map_jacobian.set_column(j, &column);
-                map_jacobian[(j, j)] += 1.0;
-            }
+            let map_jacobian = differenced(&mut residual, &y_next, &r_next, &mut periods)?
+                + DMatrix::<f64>::identity(n, n);
             let multipliers = map_jacobian.complex_eigenvalues();
             let largest = multipliers.iter().map(|m| m.norm()).fold(0.0, f64::max);
             if largest > 1.0 {
