@@ -180,7 +180,8 @@ pub fn radial_rates(
     let s2 = z.norm_squared();
     if s2 > 0.0 {
         // 1/s as s (1/s^2): the square root and the division both wait only for s^2 and run
-        // side by side, where 1/sqrt(s^2) chains them (2 to 3 % of scene T's step). Below
+        // side by side, where 1/sqrt(s^2) chains them, a measurable share of scene T's step
+        // (docs/performance.md, "Measurements behind the code"). Below
         // 1e-300, 1/s^2 could overflow. The dot products with z wait only for z, not for 1/s:
         // one product after it instead of two (this runs in every right-hand side of scene T).
         let inv = if s2 > 1e-300 {

@@ -82,7 +82,8 @@ pub fn transverse(slip_law: &'static str) -> Case {
     settings.extend(steps("exponential", &[50, 100, 200, 400, 800, 1600, 3200]));
     if slip_law == "split" {
         // The paper's scheme is the split law by construction: under `total` it converges to
-        // the other model, which this table would show as a 3.5 % error floor.
+        // the other model, which this table would show as an error floor (docs/performance.md,
+        // "Measurements behind the code").
         settings.extend(steps("two_phase", &[100, 400, 1600, 6400, 25600]));
     }
     let run = move |s: &Setting| -> Result<(f64, Work), String> {

@@ -70,8 +70,9 @@ impl Equations {
     /// linear part `m u'' + (c + C) u' + k u` leaves its stability region, which lies within
     /// |h lambda| < 3 (2.96 at most). C is the friction law's steepest slope, at u' = 0: it acts
     /// only while |u'| < D, but a motion that sticks there, or crosses it in a step or two,
-    /// then gains energy at every step (forcing 0.001 N, C = 125 N.s/m: 3e4 J "dissipated" in
-    /// 20 periods, where radau5 dissipates 3e-7 J).
+    /// then gains energy at every step (the regression test
+    /// `rk4_refuses_a_step_the_friction_slope_makes_unstable` in `oscillator/tests.rs` holds
+    /// such a case).
     pub fn require_rk4_stable(&self, h: f64) -> Result<(), String> {
         let Forced { m, c, k, .. } = self.plant;
         let slope = self.law.eval(0.0).1.max(0.0);

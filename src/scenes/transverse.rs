@@ -68,33 +68,29 @@ const BAND: f64 = 4.0;
 /// tolerance asks for it ([`band_points`]). Inside the band g(v) rises to FS over a time of
 /// about vs / |v'| (a tenth of a microsecond at the paper's values), and the slip |v|/g(v) has
 /// a bump there that steps ending only on v = 0 span: the stages miss the bump and so does the
-/// error estimate. That costs the split law 1e-7 to 7e-7 of FFx_mean whatever the tolerance.
-/// Ends at 3 vs alone bring that down to about 2e-8, which is where they stay from rtol 1e-7
-/// to 1e-8; ends at vs and 3 vs give 9e-9 at rtol 1e-7 and 2e-11 at 1e-9
-/// (benches/transverse.py). Ends at 2 vs, alone or with vs, stay at 1e-7.
+/// error estimate, which leaves the split law an error floor in FFx_mean whatever the
+/// tolerance. Ends at 3 vs lower the floor, ends at vs and 3 vs let the error follow the
+/// tolerance, ends at 2 vs do not help (measured with benches/transverse.py: see
+/// docs/performance.md, "Benchmarks" and "Measurements behind the code").
 const BAND_POINTS_COARSE: [f64; 1] = [3.0];
 /// The band's step ends for the tightest tolerances: at vs too.
 const BAND_POINTS_FINE: [f64; 2] = [1.0, 3.0];
 
-/// The tolerance at and below which dopri5 ends steps at [`BAND_POINTS_COARSE`]. Split law,
-/// FFx_mean over 1 s at the benchmark's case, without the band's step ends and with them:
-/// rtol 1e-6 5.6e-7 / 3.4e-7, 5e-7 2.6e-7 / 1.3e-7, 3e-7 7.0e-7 / 4.6e-8, 2e-7 1.7e-7 /
-/// 1.1e-8. Above 3e-7 the unresolved bump is within the tolerance and the step ends would cost
-/// 23 to 26 % more right-hand sides; at 3e-7 they are what meets it.
+/// The tolerance at and below which dopri5 ends steps at [`BAND_POINTS_COARSE`]. Above it the
+/// unresolved bump is within the tolerance and the step ends would only cost right-hand sides;
+/// at it they are what meets the tolerance (split law, the benchmark's case: errors and
+/// costs with and without them in docs/performance.md, "Measurements behind the code").
 const DOPRI5_COARSE_BAND_RTOL: f64 = 3e-7;
 
 /// The tolerance at and below which dopri5 ends steps at [`BAND_POINTS_FINE`] instead: there
-/// the coarse ends' 2e-8 (2.7e-8 at rtol 1e-7) is no longer well inside the tolerance. Between
-/// the two thresholds the coarse ends cost 12 % fewer right-hand sides than the fine ones, and
-/// fewer kinks to foresee: at rtol 2e-7, 0.10 s of CPU a simulated second against 0.12 s. At
-/// the paper's larger amplitudes, va 8 and 12 mm/s (150 periods, rtol 3e-7 to 1.5e-7, both
-/// laws), the coarse ends give the fine ends' errors to within 15 % for 4 to 6 % fewer
-/// right-hand sides.
+/// the coarse ends' error floor is no longer well inside the tolerance. Above it the coarse
+/// ends cost fewer right-hand sides and fewer kinks to foresee for about the fine ends' error,
+/// at the paper's larger amplitudes too (docs/performance.md, "Measurements behind the code").
 const DOPRI5_FINE_BAND_RTOL: f64 = 1e-7;
 
-/// radau5 ends steps at [`BAND_POINTS_FINE`] from this tolerance down: without them it is
-/// already within 1.2e-8 at rtol 3e-7 and 2e-7 (150 periods), and they would cost it 11 % more
-/// there.
+/// radau5 ends steps at [`BAND_POINTS_FINE`] from this tolerance down: above it radau5 meets
+/// the tolerance without them, and they would only cost it right-hand sides
+/// (docs/performance.md, "Measurements behind the code").
 const RADAU5_FINE_BAND_RTOL: f64 = 1e-7;
 
 /// The points inside the Stribeck band where `solver` ends steps: set by the tolerance for the
@@ -290,7 +286,8 @@ impl<'a> Equations<'a> {
     }
 
     /// `Params::support_velocity`, remembered for one time. Always inlined, with its cos: the
-    /// compiler leaves both as calls otherwise, which cost 3 % of a step.
+    /// compiler leaves both as calls otherwise, which makes a step measurably dearer
+    /// (docs/performance.md, "Measurements behind the code").
     #[inline(always)]
     fn support_velocity(&self, t: f64) -> Vector2<f64> {
         let (t_last, v_last) = self.last_support.get();
@@ -360,13 +357,10 @@ impl Switching for Equations<'_> {
 
     /// The total law's slip rate |v1 + v2| / g follows the vibration smoothly between its
     /// kinks. Frozen at a step's middle rather than its start, it gives FFx_mean in the steady
-    /// vibration with less error for the same work: in the benchmark case over 1 s, rtol 3e-7
-    /// to 2e-8, 35 to 72 % less error for the same right-hand sides (within 1 %); at the errors
-    /// scipy's Radau reaches there at rtol 1e-5 and 1e-6 (1.2e-7 and 4.0e-9), 7 and 4 % fewer
-    /// right-hand sides. (Over a transient from the start, 20 periods' integral of FFx, it is
-    /// neither better nor worse.) The split law's error is set by the Stribeck band's bump
-    /// instead: there the middle costs up to 4 % more right-hand sides at equal error, with
-    /// errors up to twice as large at the same rtol.
+    /// vibration with less error for the same work (over a transient from the start it is
+    /// neither better nor worse). The split law's error is set by the Stribeck band's bump
+    /// instead, and there the middle costs more at equal error. Measured on the benchmark's
+    /// case: docs/performance.md, "Benchmarks" and "Measurements behind the code".
     fn decay_follows_trend(&self) -> bool {
         self.p.slip == SlipLaw::Total
     }
@@ -451,7 +445,8 @@ pub struct Transverse {
 /// The general scene's parts a trimmed scope lets go (none for the full model, which keeps one
 /// general path to check the trimmed ones against). The work w stays even with W_diss hidden:
 /// it feeds the passivity check that stops unstable fixed steps, and leaving it out of dopri5's
-/// 1D state gained 3 % on the Fig. 4a case, within the timing noise.
+/// 1D state gained nothing beyond the timing noise on the Fig. 4a case (docs/performance.md,
+/// "Measurements behind the code").
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Trim {
     /// No vibration reaches the contact (va or eta fixed at 0): the 1D equations of [`axial`].
@@ -784,7 +779,8 @@ impl Transverse {
                 rk.integrate(eq, t0, t1, &mut self.y, &mut self.work)?;
             }
             // On the equations' own types rather than through `eq`: the contact then inlines
-            // into the right-hand side, and the step takes about 14 % fewer instructions.
+            // into the right-hand side, and the step takes fewer instructions
+            // (docs/performance.md, "Measurements behind the code").
             Solver::Dopri5(d) if self.trim.axial => {
                 d.integrate_switched(&axial, t0, t1, &mut self.y, &mut self.work)?
             }

@@ -11,8 +11,8 @@
 //! at the middle, extrapolated from the last step) and c the state the frozen decay leads to from
 //! the step's start, so the decay no longer sets the step, only how sigma and the rest vary, and
 //! a steady slip stays exact (the plain u = e^(sigma tau) y would turn it into a growing
-//! exponential: six times the steps, and a 1e-6 error, on scene T's steady sliding without
-//! vibration).
+//! exponential, with several times the steps and a larger error on scene T's steady sliding
+//! without vibration: docs/performance.md, "Measurements behind the code").
 
 use super::narrow::{Narrow, Verdict, Watch};
 use super::stiffness::StiffnessTest;
@@ -391,8 +391,8 @@ impl Dopri5 {
         let mut tmp = [0.0; MAX_DIM];
         // The quadratures after the coupled states need no stage values: the right-hand side
         // does not read them, so the stages before the last (whose argument is y_new itself)
-        // carry the coupled states alone. On scene T that is 5 states of 9, and about 3 % of the
-        // step's time.
+        // carry the coupled states alone. On scene T that is 5 states of 9 (what it saves:
+        // docs/performance.md, "Benchmarks", Cost of a step).
         let coupled = ode.coupled();
         debug_assert!(coupled <= n && decaying.iter().all(|j| j < coupled));
         // The stages written out: with the rows of A as constants the zero terms drop out (the
@@ -528,7 +528,7 @@ impl Dopri5 {
 
     /// `watch`'s verdict on the step `(t, y, trial, h)` near a narrow feature, sampled on its
     /// dense output. Kept out of line: most steps never come here, and inlined it costs every
-    /// step of scene T 4 % more instructions.
+    /// step of scene T more instructions (docs/performance.md, "Measurements behind the code").
     #[inline(never)]
     fn judge_narrow<S: Switching + ?Sized>(
         ode: &S,

@@ -4,8 +4,8 @@
 //! An adaptive step sets its length from the smooth part of the motion. Where r sweeps through
 //! the band within one step, or dips into it and out again, the stages can all fall outside it:
 //! the step misses the feature, and so does its error estimate, since both embedded solutions are
-//! built from the same stages (scene T, split law at va 8 mm/s: an error estimate of 0.03 on a
-//! step whose true error is 50 times the tolerance). So the adaptive integrators keep every step
+//! built from the same stages (seen on scene T, split law at va 8 mm/s: docs/performance.md,
+//! "Benchmarks", Large vibration amplitudes). So the adaptive integrators keep every step
 //! to a change of at most [`MAX_CHANGE`] in r inside the band, and look for a pass by sampling r
 //! along the step's continuous output whenever r is near the band at either end.
 
@@ -19,15 +19,15 @@ pub struct Narrow {
 
 /// How far r may move inside the band in one step: one width of the feature. The stages then
 /// sample it at most half a width apart (dopri5's widest gap is from 0.3 to 0.8 of the step),
-/// and the error estimate sees it. On scene T at
-/// va 8 and 12 mm/s (rtol 1e-5 to 1e-8) one width keeps FFx_mean within 6 times the tolerance;
-/// two widths leave up to 12 times.
+/// and the error estimate sees it. On scene T at the paper's larger amplitudes one width keeps
+/// FFx_mean's error near the tolerance and two widths do not (docs/performance.md,
+/// "Measurements behind the code").
 pub const MAX_CHANGE: f64 = 1.0;
 
 /// A step is sampled when r at either end lies within this many band half-widths of 0, or
 /// changes sign. Farther out r would have to turn around faster than the step resolves the
-/// motion to reach the band; on scene T (va 2 to 12 mm/s, 40 runs) sampling every step changes
-/// no step count.
+/// motion to reach the band; on scene T sampling every step changes no step count
+/// (docs/performance.md, "Benchmarks", Large vibration amplitudes).
 const WATCH: f64 = 16.0;
 
 /// Points per step at which r is sampled where it does not run straight (the last is the
@@ -102,7 +102,8 @@ impl Watch {
         let (mut inside, mut total) = moves(band, [a0, mid, b0].into_iter());
         // Where r runs nearly straight the midpoint is enough: a dip between the samples would
         // bend it. That spares six evaluations a step where r stays near the band for long (a
-        // wide band: vs 1 mm/s on scene T made every step 70 % dearer with all eight).
+        // wide band on scene T, where all eight made every step much dearer: docs/performance.md,
+        // "Benchmarks", Large vibration amplitudes).
         if (mid - 0.5 * (a0 + b0)).abs() > STRAIGHT {
             let points = (0..=SAMPLES).map(|i| match i {
                 0 => a0,

@@ -1,11 +1,12 @@
 //! The phase of a periodic forcing in turns ([`turns`]), and cos(2 pi x) for a phase `x` in turns, for periodic forcing that a right-hand side evaluates
-//! at every stage. libm's cos plus the reduction `fract` cost about as much as the rest of scene
-//! T's right-hand side; reducing in turns is exact, which leaves two short polynomials.
+//! at every stage. libm's cos plus the reduction `fract` cost a large part of scene T's
+//! right-hand side (docs/performance.md, "Measurements behind the code"); reducing in turns is
+//! exact, which leaves two short polynomials.
 //!
 //! Both polynomials are evaluated every time, by Estrin's scheme, and the quadrant picks one
 //! without a branch: Horner's chain of eight dependent products, and a quadrant branch that the
-//! stages of a step (which fall in different quadrants) mispredict, made this a sixth of scene
-//! T's run time.
+//! stages of a step (which fall in different quadrants) mispredict, made this a large share of
+//! scene T's run time (docs/performance.md, "Benchmarks", Cost of a step).
 
 use std::f64::consts::FRAC_PI_2;
 
