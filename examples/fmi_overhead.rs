@@ -1,96 +1,171 @@
-//! What the FMI layer costs per doStep: each model at its defaults is advanced over the same
-//! interval (a) through the exported fmi2DoStep (in-process, src/importer.rs) in
-//! communication steps of 1e-5 s, (b) by calling the scene directly with the same steps, and
-//! (c) by calling the scene once per vibration (forcing) period (or once, for a shorter interval). (a) - (b) is the FMI layer per
-//! call; (b) - (c) is what restarting the integrator at every communication point costs.
+//! What one fmi2DoStep costs at small communication steps, in CPU time of the running thread.
+//! Each model at its defaults is advanced by CALLS communication steps of h from t = 0 (the
+//! master's points t = i h), for h = 1e-6 s and 1e-5 s:
 //!
-//!   cargo run --release --example fmi_overhead [SECONDS]     (simulated time, default 0.05 s)
+//! - (a) through the exported fmi2DoStep, in-process (src/importer.rs), outputs not read;
+//! - (b) the same, then fmi2GetReal of every output after each step;
+//! - (c) by calling the scene directly with the same steps;
+//! - (d) by calling the scene once per vibration (forcing) period over the same interval (once,
+//!   for a model without one or an interval shorter than it).
+//!
+//! (a) - (c) is the FMI layer per call; (c) - (d) what restarting the integrator at every
+//! communication point costs; (d) / CALLS the integration itself. Each figure is the median of
+//! RUNS runs, the cases taking turns, and each difference the median of its runs' differences:
+//! short runs taken in turn and paired keep the drift of a shared machine's speed out of them.
+//!
+//!   cargo run --release --example fmi_overhead [CALLS]          (default 5000)
+//!   cargo run --release --example fmi_overhead -- --only MODEL [H] [CALLS] [read]
+//!
+//! The second form runs (a) alone for one model ((b) with `read`), for an instruction count
+//! under `valgrind --tool=callgrind`, which repeats where the CPU time of a shared machine does
+//! not.
 
+use friction_fmu::cpu_clock::time_cpu;
 use friction_fmu::fmi2::ffi::Status;
 use friction_fmu::importer::Instance;
 use friction_fmu::interface::values::ValueSet;
+use friction_fmu::interface::variable::Causality;
 use friction_fmu::scenes::{Model, Scope, MODELS};
-use std::time::Instant;
 
-const STEP: f64 = 1e-5;
-const REPEATS: usize = 3;
+const STEPS: [f64; 2] = [1e-6, 1e-5];
+const RUNS: usize = 11;
 
-/// The natural period of each model's excitation (s), read from its defaults.
+/// The natural period of each model's excitation (s), read from its defaults; infinite for a
+/// model without one.
 fn period(model: &Model, values: &ValueSet) -> f64 {
     let table = model.table;
     let real = |name: &str| table.by_name(name).map(|v| values.real(v.value_reference));
     match (real("f"), real("w")) {
         (Some(f), _) => 1.0 / f,
         (None, Some(w)) => std::f64::consts::TAU / w,
-        _ => STEP,
+        _ => f64::INFINITY,
     }
 }
 
-/// The fastest of REPEATS runs of `run`, in seconds.
-fn best(mut run: impl FnMut() -> Result<(), String>) -> Result<f64, String> {
-    let mut fastest = f64::INFINITY;
-    for _ in 0..REPEATS {
-        let started = Instant::now();
-        run()?;
-        fastest = fastest.min(started.elapsed().as_secs_f64());
-    }
-    Ok(fastest)
+fn median(mut xs: Vec<f64>) -> f64 {
+    xs.sort_by(f64::total_cmp);
+    xs[xs.len() / 2]
 }
 
-fn measure(model: &Model, seconds: f64) -> Result<(), String> {
+/// CPU seconds of `calls` fmi2DoSteps of `step` through the FMI layer, reading every output
+/// after each when `read` is set.
+fn through_fmi(model: &Model, step: f64, calls: u64, read: bool) -> Result<f64, String> {
     let id = model.table.model_identifier;
-    let values = ValueSet::start(model.table);
-    let steps = (seconds / STEP).round() as u64;
-    let through_fmi = best(|| {
-        let mut fmu = Instance::new(id, "overhead").map_err(|log| format!("{log:?}"))?;
-        if fmu.initialize() != Status::Ok {
-            return Err(format!("{id}: initialisation: {}", fmu.last_message()));
-        }
-        for k in 0..steps {
-            let t = k as f64 * STEP;
-            if fmu.do_step(t, (k + 1) as f64 * STEP - t, true) != Status::Ok {
+    let mut fmu = Instance::new(id, "overhead").map_err(|log| format!("{id}: {log:?}"))?;
+    if fmu.initialize() != Status::Ok {
+        return Err(format!("{id}: initialisation: {}", fmu.last_message()));
+    }
+    let outputs: Vec<u32> = model
+        .table
+        .variables
+        .iter()
+        .filter(|v| v.causality == Causality::Output)
+        .map(|v| v.value_reference)
+        .collect();
+    let mut values = vec![0.0; outputs.len()];
+    let (result, seconds) = time_cpu(|| {
+        for k in 0..calls {
+            let t = k as f64 * step;
+            if fmu.do_step(t, (k + 1) as f64 * step - t, true) != Status::Ok {
                 return Err(format!("{id}: fmi2DoStep at {t}: {}", fmu.last_message()));
+            }
+            if read && fmu.get_real_into(&outputs, &mut values) != Status::Ok {
+                return Err(format!("{id}: fmi2GetReal at {t}: {}", fmu.last_message()));
             }
         }
         Ok(())
-    })?;
-    let direct = |h: f64| {
-        best(|| {
-            let mut scene = (model.build)(&values, 0.0, &Scope::full())?;
-            let n = (seconds / h).round() as u64;
-            for k in 0..n {
-                scene.do_step((k + 1) as f64 * h - scene.time(), &values)?;
-            }
-            Ok(())
-        })
-    };
-    let same_steps = direct(STEP)?;
-    let per_period = direct(period(model, &values).min(seconds))?;
-    let n = steps as f64;
+    });
+    result.map(|()| seconds)
+}
+
+/// CPU seconds of the scene advanced over `calls * step` in calls of `h` (the last one ending
+/// on the interval's end).
+fn direct(model: &Model, step: f64, calls: u64, h: f64) -> Result<f64, String> {
+    let values = ValueSet::start(model.table);
+    let mut scene = (model.build)(&values, 0.0, &Scope::full())?;
+    let end = calls as f64 * step;
+    let n = (end / h).round().max(1.0) as u64;
+    let (result, seconds) = time_cpu(|| {
+        for k in 0..n {
+            let target = if k + 1 == n { end } else { (k + 1) as f64 * h };
+            scene.do_step(target - scene.time(), &values)?;
+        }
+        Ok::<(), String>(())
+    });
+    result.map(|()| seconds)
+}
+
+fn measure(model: &Model, step: f64, calls: u64) -> Result<(), String> {
+    let values = ValueSet::start(model.table);
+    let per_period = period(model, &values).min(calls as f64 * step);
+    let mut times: [Vec<f64>; 4] = Default::default();
+    for _ in 0..RUNS {
+        times[0].push(through_fmi(model, step, calls, false)?);
+        times[1].push(through_fmi(model, step, calls, true)?);
+        times[2].push(direct(model, step, calls, step)?);
+        times[3].push(direct(model, step, calls, per_period)?);
+    }
+    let per_call = |t: &[f64]| median(t.to_vec()) / calls as f64 * 1e9;
+    let difference =
+        |a: &[f64], b: &[f64]| per_call(&a.iter().zip(b).map(|(a, b)| a - b).collect::<Vec<_>>());
+    let [fmi, read, scene, whole] = &times;
     println!(
-        "| {id} | {steps} | {:.3} | {:.3} | {:.3} | {:.0} | {:.0} |",
-        through_fmi * 1e3,
-        same_steps * 1e3,
-        per_period * 1e3,
-        (through_fmi - same_steps) / n * 1e9,
-        (same_steps - per_period) / n * 1e9,
+        "| {} | {step:e} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} |",
+        model.table.model_identifier,
+        per_call(fmi),
+        per_call(read),
+        per_call(scene),
+        per_call(whole),
+        difference(fmi, scene),
+        difference(scene, whole),
+    );
+    Ok(())
+}
+
+/// `--only MODEL [H] [CALLS] [read]`: case (a) or (b) alone, for callgrind.
+fn only(args: &[String]) -> Result<(), String> {
+    let id = args.first().ok_or("--only needs a model identifier")?;
+    let model = MODELS
+        .iter()
+        .find(|m| m.table.model_identifier == id)
+        .ok_or_else(|| format!("no model {id}"))?;
+    let step = args
+        .get(1)
+        .map_or(Ok(1e-6), |s| s.parse())
+        .map_err(|e| format!("H: {e}"))?;
+    let calls = args
+        .get(2)
+        .map_or(Ok(5000), |s| s.parse())
+        .map_err(|e| format!("CALLS: {e}"))?;
+    let read = args.get(3).is_some_and(|a| a == "read");
+    let seconds = through_fmi(model, step, calls, read)?;
+    println!(
+        "{id}: h = {step:e} s, {calls} calls, {:.0} ns of CPU a call",
+        seconds / calls as f64 * 1e9
     );
     Ok(())
 }
 
 fn main() -> std::process::ExitCode {
-    let seconds = std::env::args()
-        .nth(1)
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(0.05);
-    println!("Simulated {seconds} s at each model's defaults; communication step {STEP} s; fastest of {REPEATS} runs.\n");
-    println!("| model | doSteps | fmi2DoStep (ms) | scene, same steps (ms) | scene, one call per period (ms) | FMI layer per doStep (ns) | integrator restart per doStep (ns) |");
-    println!("|---|---|---|---|---|---|---|");
-    for model in MODELS {
-        if let Err(e) = measure(model, seconds) {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let result = if args.first().map(String::as_str) == Some("--only") {
+        only(&args[1..])
+    } else {
+        let calls = args.first().and_then(|s| s.parse().ok()).unwrap_or(5000);
+        println!("Each model at its defaults, {calls} communication steps of h from t = 0; CPU time of the thread per call (ns), median of {RUNS} runs.\n");
+        println!("| model | h (s) | (a) fmi2DoStep | (b) fmi2DoStep + fmi2GetReal of every output | (c) scene, same steps | (d) scene, one call a period | FMI layer (a) - (c) | integrator restart (c) - (d) |");
+        println!("|---|---|---|---|---|---|---|---|");
+        STEPS.iter().try_for_each(|&step| {
+            MODELS
+                .iter()
+                .try_for_each(|model| measure(model, step, calls))
+        })
+    };
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
             eprintln!("fmi_overhead: {e}");
-            return std::process::ExitCode::FAILURE;
+            std::process::ExitCode::FAILURE
         }
     }
-    std::process::ExitCode::SUCCESS
 }

@@ -9,7 +9,9 @@ use super::logger::{Logger, CATEGORY_CALLS, CATEGORY_ERROR, CATEGORY_WARNING};
 use crate::interface::interpolates_inputs;
 use crate::interface::unread_inputs::UnreadInputs;
 use crate::interface::values::{check_value, ValueSet};
-use crate::interface::variable::{Causality, Kind, Variability, Variable, LOG_CATEGORIES};
+use crate::interface::variable::{
+    Causality, Kind, ModelTable, Variability, Variable, LOG_CATEGORIES,
+};
 use crate::scene_file::registry::Loaded;
 use crate::scenes::{clock_warning, Model, Scene, Scope, HELD_INPUTS};
 use std::sync::Arc;
@@ -115,6 +117,30 @@ pub struct Instance {
     unread_inputs: UnreadInputs,
     /// Whether this run has said that the clock bounds the readings' accuracy.
     clock_warned: bool,
+    /// Whether the outputs in `values` are those of the current state and inputs. Outputs are
+    /// computed when a getter asks for one, not by every fmi2DoStep (a master that steps many
+    /// times a reading would pay for them on every step), and then kept until the state, an
+    /// input or a parameter changes.
+    pub(super) outputs_current: bool,
+    /// Each value reference's position in the model's table, and so in `values`
+    /// ([`NO_VARIABLE`] for a number that names none): getters and setters run every
+    /// communication step, and this spares them a search of the table for each reference
+    /// (docs/performance.md, Cost per call).
+    positions: Vec<u16>,
+}
+
+/// A value reference that names no variable, in [`Instance::positions`].
+const NO_VARIABLE: u16 = u16::MAX;
+
+/// Each value reference's position in `table` (see [`Instance::positions`]).
+fn positions(table: &ModelTable) -> Vec<u16> {
+    let largest = table.variables.iter().map(|v| v.value_reference).max();
+    let mut positions = vec![NO_VARIABLE; largest.map_or(0, |vr| vr as usize + 1)];
+    for (position, var) in table.variables.iter().enumerate() {
+        positions[var.value_reference as usize] =
+            u16::try_from(position).expect("a model has fewer than 65535 variables");
+    }
+    positions
 }
 
 impl Instance {
@@ -145,6 +171,8 @@ impl Instance {
             rollback: Vec::with_capacity(ROLLBACK_CAPACITY),
             unread_inputs: UnreadInputs::default(),
             clock_warned: false,
+            outputs_current: false,
+            positions: positions(model.table),
             pending_derivatives: Vec::with_capacity(
                 model
                     .table
@@ -257,6 +285,7 @@ impl Instance {
         self.stop_time = stop_time;
         self.time = start_time;
         self.last_successful_time = start_time;
+        self.outputs_current = false;
         Status::Ok
     }
 
@@ -272,6 +301,7 @@ impl Instance {
         if let Err(status) = self.check_phase("fmi2ExitInitializationMode", &[InitializationMode]) {
             return status;
         }
+        self.outputs_current = false;
         match (self.model.build)(&self.values, self.start_time, &self.scope) {
             Ok(mut scene) => {
                 let handed = self
@@ -318,6 +348,7 @@ impl Instance {
         self.pending_derivatives.clear();
         self.unread_inputs.clear();
         self.clock_warned = false;
+        self.outputs_current = false;
         Status::Ok
     }
 
@@ -331,9 +362,8 @@ impl Instance {
         type_name: &str,
     ) -> Result<&'static Variable, Status> {
         let visible = self
-            .model
-            .table
-            .variable(value_reference)
+            .position(value_reference)
+            .map(|position| &self.model.table.variables[position])
             .filter(|v| self.scope.exposes(v.value_reference));
         match visible {
             Some(var) if accepts(&var.kind) => Ok(var),
@@ -348,16 +378,27 @@ impl Instance {
         }
     }
 
+    /// Where a value reference's variable is in the model's table and in `values`.
+    fn position(&self, value_reference: u32) -> Option<usize> {
+        let position = *self.positions.get(value_reference as usize)?;
+        (position != NO_VARIABLE).then_some(usize::from(position))
+    }
+
     /// Outputs follow the current state and inputs; in initialisation mode they are computed
-    /// from a scene built from the values set so far.
+    /// from a scene built from the values set so far. Computed once until either changes.
     fn refresh_outputs(&mut self, function: &str) -> Result<(), Status> {
+        if self.outputs_current {
+            return Ok(());
+        }
         if let Some(scene) = &self.scene {
             scene.write_outputs(&mut self.values);
+            self.outputs_current = true;
             return Ok(());
         }
         match (self.model.build)(&self.values, self.start_time, &self.scope) {
             Ok(scene) => {
                 scene.write_outputs(&mut self.values);
+                self.outputs_current = true;
                 Ok(())
             }
             Err(message) => Err(self.error(&format!(
@@ -393,21 +434,24 @@ impl Instance {
                 return status;
             }
         }
-        // As in do_step: no NaN reaches the master silently (a scene can produce one where it
-        // cannot be evaluated, e.g. at an absurd start time).
-        if let Some(&vr) = value_references
-            .iter()
-            .find(|&&vr| !self.values.real(vr).is_finite())
-        {
+        // No NaN reaches the master silently (a scene can produce one where it cannot be
+        // evaluated, e.g. at an absurd start time, or a step can leave one in an output). Every
+        // reference was found above.
+        let values = self.values.as_slice();
+        let value = |vr: u32| {
+            self.position(vr)
+                .map_or(f64::NAN, |position| values[position])
+        };
+        if let Some(&vr) = value_references.iter().find(|&&vr| !value(vr).is_finite()) {
             let name = self.model.table.variable(vr).map_or("?", |v| v.name);
             return self.error(&format!(
                 "{function}: {name} is {} at t = {}: the model cannot be evaluated there; expected a finite value",
-                self.values.real(vr),
+                value(vr),
                 self.time
             ));
         }
         for (i, &vr) in value_references.iter().enumerate() {
-            out(i, self.values.real(vr));
+            out(i, value(vr));
         }
         Status::Ok
     }
@@ -455,6 +499,9 @@ impl Instance {
             }
         }
         let mut status = Status::Ok;
+        if !value_references.is_empty() {
+            self.outputs_current = false;
+        }
         for (i, &vr) in value_references.iter().enumerate() {
             self.values.set(vr, value_at(i));
             let running = self.phase == StepComplete;
@@ -519,6 +566,9 @@ impl Instance {
                     var.name
                 ));
             }
+        }
+        if !value_references.is_empty() {
+            self.outputs_current = false;
         }
         for (&vr, &derivative) in value_references.iter().zip(derivatives) {
             match self.scene.as_mut() {
@@ -634,25 +684,11 @@ impl Instance {
                 .error("fmi2DoStep: no scene: fmi2ExitInitializationMode has not succeeded");
         };
         scene.save_into(&mut self.rollback);
+        self.outputs_current = false;
         match scene.do_step(target - self.time, &self.values) {
             Ok(()) => {
-                scene.write_outputs(&mut self.values);
-                // The scenes check their states; this is the last line of defence: no NaN ever
-                // reaches the master silently. Outputs a scene file hides are not checked: the
-                // scene may skip computing them.
-                let bad = self.model.table.variables.iter().find(|v| {
-                    v.causality == Causality::Output
-                        && self.scope.exposes(v.value_reference)
-                        && !self.values.real(v.value_reference).is_finite()
-                });
-                if let Some(var) = bad {
-                    self.phase = Error;
-                    return self.error(&format!(
-                        "fmi2DoStep: output {} became {} in the step from t = {current_communication_point} by {step}; expected a finite value",
-                        var.name,
-                        self.values.real(var.value_reference)
-                    ));
-                }
+                // The scenes check their states; the outputs are computed when they are read,
+                // and the getters refuse a non-finite one, so no NaN reaches the master silently.
                 self.time = scene.time();
                 self.last_successful_time = self.time;
                 // A step that succeeded but left a warning (a solver that is a poor fit):

@@ -121,6 +121,7 @@ impl Snapshot {
         };
         instance.values = values;
         instance.scene = scene;
+        instance.outputs_current = false;
         instance.phase = self.phase;
         instance.start_time = self.start_time;
         instance.stop_time = self.stop_time;

@@ -18,7 +18,7 @@ use super::switch::{DriveSolver, Switch, VoltageSource};
 use super::{require_finite_start, require_non_negative, require_positive, Scene};
 use crate::interface::drive::vr;
 use crate::interface::values::ValueSet;
-use crate::solve::expm::{expm, mul_vec, Matrix};
+use crate::solve::expm::{expm, mul_vec, Matrix, Propagators};
 use std::f64::consts::TAU;
 
 const DIM: usize = 7;
@@ -80,8 +80,8 @@ pub struct Drive {
     y: [f64; 3],
     /// V_in' and F_load' for the coming step (zero: held).
     input_rates: [f64; 2],
-    /// expm(A h) of the last step size h, reused while the master keeps its step.
-    propagator: Option<(f64, Matrix<DIM>)>,
+    /// expm(A h) of the last few step sizes h, reused while the master keeps its step.
+    propagators: Propagators<DIM>,
 }
 
 pub fn build(
@@ -139,7 +139,7 @@ impl Drive {
             t: start_time,
             y: [0.0; 3],
             input_rates: [0.0; 2],
-            propagator: None,
+            propagators: Propagators::default(),
         })
     }
 
@@ -156,24 +156,19 @@ impl Drive {
     }
 
     fn propagator(&mut self, h: f64) -> Result<Matrix<DIM>, String> {
-        match self.propagator {
-            Some((step, phi)) if step == h => Ok(phi),
-            _ => {
-                let mut a = self.p.system();
-                for row in a.iter_mut() {
-                    for x in row.iter_mut() {
-                        *x *= h;
-                    }
+        let p = &self.p;
+        let phi = self.propagators.get(h, |h| {
+            let mut a = p.system();
+            for row in a.iter_mut() {
+                for x in row.iter_mut() {
+                    *x *= h;
                 }
-                let phi = expm(&a).map_err(|e| {
-                    format!(
-                        "{e}: the parameters put a coefficient of the drive's equations beyond f64"
-                    )
-                })?;
-                self.propagator = Some((h, phi));
-                Ok(phi)
             }
-        }
+            expm(&a).map_err(|e| {
+                format!("{e}: the parameters put a coefficient of the drive's equations beyond f64")
+            })
+        })?;
+        Ok(*phi)
     }
 }
 

@@ -202,6 +202,52 @@ fn expm_unbalanced<const N: usize>(a: &Matrix<N>, norm: f64) -> Result<Matrix<N>
     Ok(r)
 }
 
+/// How many step sizes [`Propagators`] remembers.
+const PROPAGATOR_SLOTS: usize = 4;
+
+/// The propagators `expm(A h)` of one constant A for the last few step sizes h. A master whose
+/// communication points are `t0 + i h` hands the FMU steps that differ from h, and from each
+/// other, by round-off of t: two values take turns while t stays within one binade, so one
+/// remembered step would miss on about every other call, and each miss costs a whole matrix
+/// exponential. A remembered step is the same number, so its propagator is the one a new
+/// exponential would give, bit for bit.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Propagators<const N: usize> {
+    /// (h, expm(A h)); h = 0 marks an empty slot (no step is 0).
+    slots: [(f64, Matrix<N>); PROPAGATOR_SLOTS],
+    /// The slot the next new step size replaces (the oldest).
+    next: usize,
+}
+
+impl<const N: usize> Default for Propagators<N> {
+    fn default() -> Self {
+        Propagators {
+            slots: [(0.0, [[0.0; N]; N]); PROPAGATOR_SLOTS],
+            next: 0,
+        }
+    }
+}
+
+impl<const N: usize> Propagators<N> {
+    /// The propagator of step `h > 0`: remembered, or made by `make(h)` and remembered.
+    pub fn get<E>(
+        &mut self,
+        h: f64,
+        make: impl FnOnce(f64) -> Result<Matrix<N>, E>,
+    ) -> Result<&Matrix<N>, E> {
+        let slot = match self.slots.iter().position(|&(step, _)| step == h) {
+            Some(slot) => slot,
+            None => {
+                let slot = self.next;
+                self.slots[slot] = (h, make(h)?);
+                self.next = (slot + 1) % PROPAGATOR_SLOTS;
+                slot
+            }
+        };
+        Ok(&self.slots[slot].1)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -269,5 +315,30 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Oracle: a fresh exponential of each step. The steps a master's points t = i h hand the
+    /// FMU are remembered after a few calls (two take turns within a binade of t), and each
+    /// remembered propagator is the fresh one, bit for bit.
+    #[test]
+    fn propagators_remember_the_round_off_variants_of_a_step() {
+        let a = [[-2.0, 1.0], [0.5, -3.0]];
+        let scaled = |h: f64| expm(&[[a[0][0] * h, a[0][1] * h], [a[1][0] * h, a[1][1] * h]]);
+        let mut cache = Propagators::<2>::default();
+        let (mut made, mut t) = (0, 0.0);
+        for i in 1..=100_000u32 {
+            let target = f64::from(i) * 1e-6;
+            let h = target - t;
+            t = target;
+            let remembered = *cache
+                .get(h, |h| {
+                    made += 1;
+                    scaled(h)
+                })
+                .unwrap();
+            assert_eq!(remembered, scaled(h).unwrap(), "step {i}");
+        }
+        // A few for each binade of t (17 here); one remembered step would make tens of thousands.
+        assert!(made < 100, "{made} exponentials for 100 000 steps");
     }
 }

@@ -29,6 +29,26 @@ const N3: usize = STAGES * MAX_DIM;
 const MAX_NEWTON: usize = 10;
 /// Newton stops when its last update is this fraction of the error tolerance.
 const NEWTON_TOL: f64 = 1e-2;
+/// The sizes of the Newton matrix, which every step clears: the smallest that holds the 3 nc
+/// unknowns is used, so that a system of 1 to 5 coupled states does not clear the 27 x 27
+/// doubles (5.8 kB) of the largest (at short communication steps, a step a call). The arithmetic
+/// on the leading 3 nc x 3 nc block is the same in each.
+const SMALL: usize = 9;
+const MEDIUM: usize = 15;
+
+enum NewtonSize {
+    Small,
+    Medium,
+    Full,
+}
+
+fn newton_size(coupled: usize) -> NewtonSize {
+    match STAGES * coupled {
+        m if m <= SMALL => NewtonSize::Small,
+        m if m <= MEDIUM => NewtonSize::Medium,
+        _ => NewtonSize::Full,
+    }
+}
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Radau5 {
@@ -115,6 +135,10 @@ impl Tableau {
     }
 }
 
+/// Computed once, not at every call (a master's short communication steps make many): its
+/// entries take a square root and two cube roots.
+static TABLEAU: std::sync::LazyLock<Tableau> = std::sync::LazyLock::new(Tableau::new);
+
 type Jacobian = [[f64; MAX_DIM]; MAX_DIM];
 
 fn eval(ode: &dyn Ode, t: f64, y: &[f64], f: &mut [f64], work: &mut Work) {
@@ -168,13 +192,13 @@ fn scaled_norm(x: &[f64], scale: &[f64]) -> f64 {
 
 /// The Newton matrix I - h (A (x) J) over the coupled states (`nc` of them, stage by stage), J
 /// being stage sj's Jacobian `jacs[sj]`; factored in place. False if singular.
-fn newton_matrix(
+fn newton_matrix<const M: usize>(
     tab: &Tableau,
     h: f64,
     nc: usize,
     jacs: [&Jacobian; STAGES],
-    matrix: &mut [[f64; N3]; N3],
-    pivots: &mut [usize; N3],
+    matrix: &mut [[f64; M]; M],
+    pivots: &mut [usize; M],
 ) -> bool {
     for si in 0..STAGES {
         for i in 0..nc {
@@ -196,16 +220,16 @@ fn newton_matrix(
 /// rows by substitution, dz_q = r_q + h sum_sj a_si,sj J_sj[q] . dz_c,sj. The same update as the
 /// full 3n x 3n system gives, for a factorisation of 3 nc.
 #[allow(clippy::too_many_arguments)]
-fn newton_update(
+fn newton_update<const M: usize>(
     tab: &Tableau,
     h: f64,
     (n, nc): (usize, usize),
     jacs: [&Jacobian; STAGES],
-    matrix: &[[f64; N3]; N3],
-    pivots: &[usize; N3],
+    matrix: &[[f64; M]; M],
+    pivots: &[usize; M],
     residual: &mut [f64; N3],
 ) {
-    let mut coupled = [0.0; N3];
+    let mut coupled = [0.0; M];
     for s in 0..STAGES {
         coupled[s * nc..(s + 1) * nc].copy_from_slice(&residual[s * n..s * n + nc]);
     }
@@ -232,9 +256,28 @@ impl Radau5 {
     /// the step for every stage and iteration, one LU per step, three right-hand sides per
     /// iteration. Much cheaper than [`Radau5::solve_stages`] where the Jacobian varies slowly;
     /// false if the iteration does not contract (the caller then tries full Newton).
+    #[allow(clippy::too_many_arguments)]
+    fn solve_stages_simplified(
+        &self,
+        tab: &Tableau,
+        ode: &dyn Ode,
+        n: usize,
+        step: (f64, &[f64], f64),
+        start: (&[f64], &Jacobian),
+        z: &mut [f64; N3],
+        work: &mut Work,
+    ) -> bool {
+        match newton_size(ode.coupled().min(n)) {
+            NewtonSize::Small => self.simplified_in::<SMALL>(tab, ode, n, step, start, z, work),
+            NewtonSize::Medium => self.simplified_in::<MEDIUM>(tab, ode, n, step, start, z, work),
+            NewtonSize::Full => self.simplified_in::<N3>(tab, ode, n, step, start, z, work),
+        }
+    }
+
+    /// [`Radau5::solve_stages_simplified`] with a Newton matrix of M x M.
     // Index loops mirror the collocation formulas.
     #[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
-    fn solve_stages_simplified(
+    fn simplified_in<const M: usize>(
         &self,
         tab: &Tableau,
         ode: &dyn Ode,
@@ -257,8 +300,8 @@ impl Radau5 {
         }
         let nc = ode.coupled().min(n);
         let jacs = [j0; STAGES];
-        let mut matrix = [[0.0; N3]; N3];
-        let mut pivots = [0; N3];
+        let mut matrix = [[0.0; M]; M];
+        let mut pivots = [0; M];
         if !newton_matrix(tab, h, nc, jacs, &mut matrix, &mut pivots) {
             return false;
         }
@@ -316,9 +359,26 @@ impl Radau5 {
 
     /// Solves the collocation equations `z_i = h sum_j a_ij f(t + c_j h, y + z_j)` by full
     /// Newton; false if Newton does not converge (the caller shrinks the step).
+    fn solve_stages(
+        &self,
+        tab: &Tableau,
+        ode: &dyn Ode,
+        n: usize,
+        step: (f64, &[f64], f64),
+        z: &mut [f64; N3],
+        work: &mut Work,
+    ) -> bool {
+        match newton_size(ode.coupled().min(n)) {
+            NewtonSize::Small => self.full_in::<SMALL>(tab, ode, n, step, z, work),
+            NewtonSize::Medium => self.full_in::<MEDIUM>(tab, ode, n, step, z, work),
+            NewtonSize::Full => self.full_in::<N3>(tab, ode, n, step, z, work),
+        }
+    }
+
+    /// [`Radau5::solve_stages`] with a Newton matrix of M x M.
     // Index loops mirror the collocation formulas.
     #[allow(clippy::needless_range_loop)]
-    fn solve_stages(
+    fn full_in<const M: usize>(
         &self,
         tab: &Tableau,
         ode: &dyn Ode,
@@ -358,8 +418,8 @@ impl Radau5 {
                 }
             }
             let stage_jacs = [&jacs[0], &jacs[1], &jacs[2]];
-            let mut matrix = [[0.0; N3]; N3];
-            let mut pivots = [0; N3];
+            let mut matrix = [[0.0; M]; M];
+            let mut pivots = [0; M];
             if !newton_matrix(tab, h, nc, stage_jacs, &mut matrix, &mut pivots) {
                 return false;
             }
@@ -471,7 +531,7 @@ impl Radau5 {
         if t1 == t0 {
             return Ok(());
         }
-        let tab = Tableau::new();
+        let tab: &Tableau = &TABLEAU;
         let span = t1 - t0;
         let h_max = self.h_max.min(span);
         // Steps shorter than this at t are round-off in t.
@@ -542,7 +602,7 @@ impl Radau5 {
                 j0_at_t = true;
             }
             let simplified = self.solve_stages_simplified(
-                &tab,
+                tab,
                 ode,
                 n,
                 (t, y, h_try),
@@ -551,7 +611,7 @@ impl Radau5 {
                 work,
             );
             let converged =
-                simplified || self.solve_stages(&tab, ode, n, (t, y, h_try), &mut z, work);
+                simplified || self.solve_stages(tab, ode, n, (t, y, h_try), &mut z, work);
             if !converged {
                 if self.fixed_step {
                     return Err(format!(
@@ -640,7 +700,7 @@ impl Radau5 {
                     let crossed = sw_new[i] == 0.0 || (sw_new[i] > 0.0) != (sw_old[i] > 0.0);
                     if sw_old[i] != 0.0 && crossed {
                         let located =
-                            locate(sw, &tab, n, (t, y, h_try), &z, i, sw_old[i], sw_new[i]);
+                            locate(sw, tab, n, (t, y, h_try), &z, i, sw_old[i], sw_new[i]);
                         let Some(theta) = located else { continue };
                         // A zero at the very start is the kink this step started on; one
                         // closer to it than the shortest step is round-off in t (as in dopri5).
@@ -660,7 +720,7 @@ impl Radau5 {
             if let Some((sw, r0)) = switching.and_then(|sw| Some((sw, sw.narrow(&sw_old)?))) {
                 let r1 = sw.narrow(&sw_new).map_or(f64::INFINITY, |e| e.r);
                 let r_at = |theta: f64| {
-                    let state = collocation(&tab, n, y, &z, theta);
+                    let state = collocation(tab, n, y, &z, theta);
                     let mut at = [0.0; MAX_SWITCHES];
                     sw.switches(t + theta * h_try, &state[..n], &mut at);
                     sw.narrow(&at).map_or(f64::INFINITY, |e| e.r)
