@@ -8,10 +8,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# libclang-dev: bindgen, for the fmi crate; valgrind: memcheck; libtbb12: ecos; mingw-w64: links
+# libclang-dev: bindgen, for the fmi crate; libzstd-dev and pkg-config: the zstd library the fmi
+# crate's zip links (.cargo/config.toml); valgrind: memcheck; libtbb12: ecos; mingw-w64: links
 # the win64 library; wine64: runs the C host on it. The win64 standard library comes with
 # rustup; where rustup cannot add it, Debian's Rust builds it from source (slower).
-APT_PACKAGES="libclang-dev valgrind libtbb12 mingw-w64 wine64"
+APT_PACKAGES="libclang-dev libzstd-dev pkg-config valgrind libtbb12 mingw-w64 wine64"
 if ! rustup target add x86_64-pc-windows-gnu >/dev/null 2>&1; then
     echo "== rustup cannot add x86_64-pc-windows-gnu: Debian's Rust builds its standard library"
     APT_PACKAGES="$APT_PACKAGES rustc-web cargo-web rust-web-src"

@@ -5,7 +5,9 @@ filesystem shared with the client) or as the bytes of the .fmu (works anywhere).
 extracts each FMU once, keeps its shared library loaded, and instantiates it once per point.
 A refusal by the FMU (error, discard, fatal) becomes the row's status and message, and so does
 an output without a finite summary (status error): a failed point never raises out of
-`run_point`, and a row with status ok holds only finite numbers.
+`run_point`. A point the FMU ran but warned about (a periodic start that fell back to the
+transient, say) has status warning and the FMU's words; rows with status ok or warning hold only
+finite numbers.
 """
 import ctypes
 import hashlib
@@ -26,6 +28,9 @@ from fmpy.fmi2 import FMU2Slave
 from . import switches
 
 STATUS = ["ok", "warning", "discard", "error", "fatal", "pending"]
+WARNING = STATUS.index("warning")
+# The statuses of a point that ran to its stop time: its outputs are in the row.
+RAN = ("ok", "warning")
 
 
 @dataclass(frozen=True)
@@ -234,7 +239,8 @@ def run_point(source, plan, point):
         fmu.instantiate(callbacks=_callbacks(environment))
         times, samples = _simulate(fmu, lib, plan, values, plan.outputs)
         row.update(collect(plan.outputs, {**lib.starts, **values}, times, samples))
-        row["status"], row["message"] = "ok", ""
+        warned = [text for status, text in messages if status == WARNING]
+        row["status"], row["message"] = ("warning", " | ".join(warned)) if warned else ("ok", "")
     except NoSummary as error:  # the reason is ours: the FMU's warnings would not explain it
         row["status"], row["message"] = "error", str(error)
     except fmpy.fmi1.FMICallException as error:

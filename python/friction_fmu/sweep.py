@@ -30,7 +30,7 @@ from . import check
 from .grid import Output, Plan, Span, load_file, parse_assignment
 from .presets import PRESETS
 from .progress import Progress
-from .runner import FmuSource, run_point
+from .runner import RAN, FmuSource, run_point
 
 CONNECT_TIMEOUT = 10.0  # seconds; Dask's own default, 30 s, is long to wait for a typo
 SUFFIXES = (".csv", ".png", ".svg", ".json")
@@ -127,7 +127,7 @@ def run_sweep(fmu, plan, scheduler=None, workers=None, ship=None, progress=True,
             for future in cf.as_completed(futures):
                 row = future.result()
                 rows.append(row)
-                bar.advance(failed=row["status"] != "ok")
+                bar.advance(failed=row["status"] not in RAN)
         finally:
             bar.close()
     rows.sort(key=lambda r: r["point"])
@@ -136,7 +136,8 @@ def run_sweep(fmu, plan, scheduler=None, workers=None, ship=None, progress=True,
         "executor": executor_label(scheduler, workers),
         "ship": ship,
         "points": len(points),
-        "failed": sum(r["status"] != "ok" for r in rows),
+        "failed": sum(r["status"] not in RAN for r in rows),
+        "warned": sum(r["status"] == "warning" for r in rows),
         "wall_time_s": time.perf_counter() - began,
     }
     return rows, summary
@@ -350,7 +351,8 @@ def write_results(command, rows, summary):
                    step=str(plan.step or "DefaultExperiment"))
     paths[".json"].write_text(json.dumps(summary, indent=2) + "\n")
     run_times = [r["wall_time_s"] for r in rows]
-    print(f"{summary['points']} points ({summary['failed']} failed) in "
+    warned = f", {summary['warned']} with a warning (see the CSV)" if summary["warned"] else ""
+    print(f"{summary['points']} points ({summary['failed']} failed{warned}) in "
           f"{summary['wall_time_s']:.2f} s on {summary['executor']}, FMU shipped by "
           f"{summary['ship']}; one run {min(run_times):.3f}-{max(run_times):.3f} s")
     for path in paths.values():

@@ -10,6 +10,7 @@ import itertools
 import math
 
 from . import heatmap, style
+from .runner import RAN
 
 PANEL_W, PANEL_H = 3.4, 2.8  # inches, one heat map panel
 # A numeric axis spanning this ratio or more (all values positive) is drawn on a log scale.
@@ -23,7 +24,7 @@ def label(name, units):
 
 def _value(row, column):
     value = row.get(column)
-    if row.get("status") != "ok" or not isinstance(value, float) or not math.isfinite(value):
+    if row.get("status") not in RAN or not isinstance(value, float) or not math.isfinite(value):
         return None
     return value
 

@@ -6,8 +6,9 @@
 #![allow(non_snake_case)]
 
 use super::binary::Binary;
+use super::calls::Call;
 use super::ffi::*;
-use super::instance::{Instance, Phase, READABLE, STATE_PHASES};
+use super::instance::{Instance, Phase};
 use super::logger::Logger;
 use super::snapshot::{self, Snapshot};
 use crate::interface::variable::Kind;
@@ -338,18 +339,14 @@ fn is_none(_: &Kind) -> bool {
 /// Which variables an FMI getter or setter reaches, and its name for messages.
 #[derive(Clone, Copy)]
 struct Access {
-    function: &'static str,
+    call: Call,
     accepts: fn(&Kind) -> bool,
     type_name: &'static str,
 }
 
-const fn access(
-    function: &'static str,
-    accepts: fn(&Kind) -> bool,
-    type_name: &'static str,
-) -> Access {
+const fn access(call: Call, accepts: fn(&Kind) -> bool, type_name: &'static str) -> Access {
     Access {
-        function,
+        call,
         accepts,
         type_name,
     }
@@ -365,16 +362,17 @@ unsafe fn get_values<T>(
     convert: fn(f64) -> T,
 ) -> Status {
     let Access {
-        function,
+        call,
         accepts,
         type_name,
     } = access;
+    let function = call.name();
     with_instance(c, |instance| {
         let (Some(vrs), Some(out)) = (slice(vr, nvr), slice_mut(value, nvr)) else {
             return null_argument(instance, function, "vr or value");
         };
         instance.get(
-            function,
+            call,
             vrs,
             &mut |i, x| out[i] = convert(x),
             accepts,
@@ -393,16 +391,17 @@ unsafe fn set_values<T: Copy>(
     convert: fn(T) -> f64,
 ) -> Status {
     let Access {
-        function,
+        call,
         accepts,
         type_name,
     } = access;
+    let function = call.name();
     with_instance(c, |instance| {
         let (Some(vrs), Some(values)) = (slice(vr, nvr), slice(value, nvr)) else {
             return null_argument(instance, function, "vr or value");
         };
         instance.trace(|| format!("{function}(vr = {vrs:?})"));
-        instance.set(function, vrs, &|i| convert(values[i]), accepts, type_name)
+        instance.set(call, vrs, &|i| convert(values[i]), accepts, type_name)
     })
 }
 
@@ -416,7 +415,7 @@ pub unsafe extern "C" fn fmi2GetReal(
 ) -> Status {
     get_values(
         c,
-        access("fmi2GetReal", is_real, "Real"),
+        access(Call::GetReal, is_real, "Real"),
         vr,
         nvr,
         value,
@@ -434,7 +433,7 @@ pub unsafe extern "C" fn fmi2GetInteger(
 ) -> Status {
     get_values(
         c,
-        access("fmi2GetInteger", is_integer, "Integer or Enumeration"),
+        access(Call::GetInteger, is_integer, "Integer or Enumeration"),
         vr,
         nvr,
         value,
@@ -452,7 +451,7 @@ pub unsafe extern "C" fn fmi2GetBoolean(
 ) -> Status {
     get_values(
         c,
-        access("fmi2GetBoolean", is_none, "Boolean"),
+        access(Call::GetBoolean, is_none, "Boolean"),
         vr,
         nvr,
         value,
@@ -470,7 +469,7 @@ pub unsafe extern "C" fn fmi2GetString(
 ) -> Status {
     get_values(
         c,
-        access("fmi2GetString", is_none, "String"),
+        access(Call::GetString, is_none, "String"),
         vr,
         nvr,
         value,
@@ -488,7 +487,7 @@ pub unsafe extern "C" fn fmi2SetReal(
 ) -> Status {
     set_values(
         c,
-        access("fmi2SetReal", is_real, "Real"),
+        access(Call::SetReal, is_real, "Real"),
         vr,
         nvr,
         value,
@@ -506,7 +505,7 @@ pub unsafe extern "C" fn fmi2SetInteger(
 ) -> Status {
     set_values(
         c,
-        access("fmi2SetInteger", is_integer, "Integer or Enumeration"),
+        access(Call::SetInteger, is_integer, "Integer or Enumeration"),
         vr,
         nvr,
         value,
@@ -524,7 +523,7 @@ pub unsafe extern "C" fn fmi2SetBoolean(
 ) -> Status {
     set_values(
         c,
-        access("fmi2SetBoolean", is_none, "Boolean"),
+        access(Call::SetBoolean, is_none, "Boolean"),
         vr,
         nvr,
         value,
@@ -542,7 +541,7 @@ pub unsafe extern "C" fn fmi2SetString(
 ) -> Status {
     set_values(
         c,
-        access("fmi2SetString", is_none, "String"),
+        access(Call::SetString, is_none, "String"),
         vr,
         nvr,
         value,
@@ -558,7 +557,7 @@ pub unsafe extern "C" fn fmi2SetString(
 pub unsafe extern "C" fn fmi2GetFMUstate(c: Component, state: *mut FmuState) -> Status {
     with_instance(c, |instance| {
         instance.trace(|| "fmi2GetFMUstate()".into());
-        if let Err(status) = instance.check_phase("fmi2GetFMUstate", STATE_PHASES) {
+        if let Err(status) = instance.check_phase(Call::GetFMUstate) {
             return status;
         }
         let Some(slot) = state.as_mut() else {
@@ -599,7 +598,7 @@ fn own_snapshot<'a>(
 pub unsafe extern "C" fn fmi2SetFMUstate(c: Component, state: FmuState) -> Status {
     with_instance(c, |instance| {
         instance.trace(|| format!("fmi2SetFMUstate({state:?})"));
-        if let Err(status) = instance.check_phase("fmi2SetFMUstate", STATE_PHASES) {
+        if let Err(status) = instance.check_phase(Call::SetFMUstate) {
             return status;
         }
         let snapshot = match own_snapshot(instance, "fmi2SetFMUstate", state) {
@@ -617,6 +616,9 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: Component, state: FmuState) -> Statu
 /// `state` points to an fmi2FMUstate from this instance.
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: Component, state: *mut FmuState) -> Status {
     with_instance(c, |instance| {
+        if let Err(status) = instance.check_phase(Call::FreeFMUstate) {
+            return status;
+        }
         let Some(slot) = state.as_mut() else {
             return null_argument(instance, "fmi2FreeFMUstate", "FMUstate");
         };
@@ -642,6 +644,9 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
     size: *mut usize,
 ) -> Status {
     with_instance(c, |instance| {
+        if let Err(status) = instance.check_phase(Call::SerializedFMUstateSize) {
+            return status;
+        }
         let Some(size) = size.as_mut() else {
             return null_argument(instance, "fmi2SerializedFMUstateSize", "size");
         };
@@ -664,6 +669,9 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
     size: usize,
 ) -> Status {
     with_instance(c, |instance| {
+        if let Err(status) = instance.check_phase(Call::SerializeFMUstate) {
+            return status;
+        }
         let snapshot = match own_snapshot(instance, "fmi2SerializeFMUstate", state) {
             Ok(snapshot) => snapshot,
             Err(status) => return status,
@@ -693,6 +701,9 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
 ) -> Status {
     with_instance(c, |instance| {
         instance.trace(|| format!("fmi2DeSerializeFMUstate(size = {size})"));
+        if let Err(status) = instance.check_phase(Call::DeSerializeFMUstate) {
+            return status;
+        }
         // The header first: a size beyond the length it declares is refused before the data
         // is read that far.
         let Some(header) = slice(bytes as *const u8, size.min(snapshot::HEADER)) else {
@@ -739,7 +750,7 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
 ) -> Status {
     with_instance(c, |instance| {
         // A call in the wrong state is refused as such first, naming the state.
-        if let Err(status) = instance.check_phase("fmi2GetDirectionalDerivative", READABLE) {
+        if let Err(status) = instance.check_phase(Call::GetDirectionalDerivative) {
             return status;
         }
         instance.error(
@@ -809,17 +820,19 @@ pub unsafe extern "C" fn fmi2DoStep(
 /// `c` from fmi2Instantiate.
 pub unsafe extern "C" fn fmi2CancelStep(c: Component) -> Status {
     with_instance(c, |instance| {
-        instance.error(&format!("fmi2CancelStep is not allowed in state {}: expected StepPending, which never occurs here (fmi2DoStep never returns fmi2Pending)", instance.phase.name()))
+        if let Err(status) = instance.check_phase(Call::CancelStep) {
+            return status;
+        }
+        // No step is ever pending: nothing to cancel.
+        Status::Ok
     })
 }
-
-const STATUS_PHASES: &[Phase] = &[Phase::StepComplete, Phase::StepFailed, Phase::Terminated];
 
 /// # Safety
 /// `value` points to an fmi2Status.
 pub unsafe extern "C" fn fmi2GetStatus(c: Component, kind: c_int, value: *mut Status) -> Status {
     with_instance(c, |instance| {
-        if let Err(status) = instance.check_phase("fmi2GetStatus", STATUS_PHASES) {
+        if let Err(status) = instance.check_phase(Call::GetStatus) {
             return status;
         }
         let Some(value) = value.as_mut() else {
@@ -842,7 +855,7 @@ pub unsafe extern "C" fn fmi2GetStatus(c: Component, kind: c_int, value: *mut St
 /// `value` points to an fmi2Real.
 pub unsafe extern "C" fn fmi2GetRealStatus(c: Component, kind: c_int, value: *mut Real) -> Status {
     with_instance(c, |instance| {
-        if let Err(status) = instance.check_phase("fmi2GetRealStatus", STATUS_PHASES) {
+        if let Err(status) = instance.check_phase(Call::GetRealStatus) {
             return status;
         }
         let Some(value) = value.as_mut() else {
@@ -864,7 +877,7 @@ pub unsafe extern "C" fn fmi2GetIntegerStatus(
     _value: *mut Integer,
 ) -> Status {
     with_instance(c, |instance| {
-        if let Err(status) = instance.check_phase("fmi2GetIntegerStatus", STATUS_PHASES) {
+        if let Err(status) = instance.check_phase(Call::GetIntegerStatus) {
             return status;
         }
         instance.error(&format!(
@@ -881,7 +894,7 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(
     value: *mut Boolean,
 ) -> Status {
     with_instance(c, |instance| {
-        if let Err(status) = instance.check_phase("fmi2GetBooleanStatus", STATUS_PHASES) {
+        if let Err(status) = instance.check_phase(Call::GetBooleanStatus) {
             return status;
         }
         let Some(value) = value.as_mut() else {
@@ -911,7 +924,7 @@ pub unsafe extern "C" fn fmi2GetStringStatus(
     _value: *mut FmiString,
 ) -> Status {
     with_instance(c, |instance| {
-        if let Err(status) = instance.check_phase("fmi2GetStringStatus", STATUS_PHASES) {
+        if let Err(status) = instance.check_phase(Call::GetStringStatus) {
             return status;
         }
         instance.error(&format!(

@@ -57,31 +57,12 @@ impl Phase {
     }
 }
 
+use super::calls::Call;
 use Phase::*;
 
-/// The phases in which getters answer (the spec also allows them after an error, for debugging).
-pub const READABLE: &[Phase] = &[
-    InitializationMode,
-    StepComplete,
-    StepFailed,
-    Terminated,
-    Error,
-];
-/// The phases in which inputs and parameters may be set.
-pub const WRITABLE: &[Phase] = &[Instantiated, InitializationMode, StepComplete];
 /// The most numbers a scene's saved state holds (TransverseFriction with two_phase: 22), with
 /// room to spare; `rollback_buffer_fits_every_scene` checks it.
 const ROLLBACK_CAPACITY: usize = 64;
-
-/// The phases in which an FMU state may be taken or restored.
-pub const STATE_PHASES: &[Phase] = &[
-    Instantiated,
-    InitializationMode,
-    StepComplete,
-    StepFailed,
-    Terminated,
-    Error,
-];
 
 pub struct Instance {
     pub id: u64,
@@ -223,20 +204,23 @@ impl Instance {
         }
     }
 
-    /// Refuses a call outside `allowed` phases, naming the phase it needs.
-    pub fn check_phase(&self, function: &str, allowed: &[Phase]) -> Result<(), Status> {
-        if allowed.contains(&self.phase) {
+    /// Refuses a call outside the phases [`Call`]'s table allows it in, naming them.
+    pub fn check_phase(&self, call: Call) -> Result<(), Status> {
+        if call.allowed_in(self.phase) {
             return Ok(());
         }
-        let expected: Vec<&str> = allowed.iter().map(|p| p.name()).collect();
         Err(self.error(&format!(
-            "{function} is not allowed in state {}: expected {}",
+            "{} is not allowed in state {}: expected {}",
+            call.name(),
             self.phase.name(),
-            expected.join(" or ")
+            call.expected()
         )))
     }
 
     pub fn set_debug_logging(&mut self, logging_on: bool, categories: &[String]) -> Status {
+        if let Err(status) = self.check_phase(Call::SetDebugLogging) {
+            return status;
+        }
         for category in categories {
             if !LOG_CATEGORIES.iter().any(|(name, _)| name == category) {
                 let known: Vec<&str> = LOG_CATEGORIES.iter().map(|(name, _)| *name).collect();
@@ -259,7 +243,7 @@ impl Instance {
         start_time: f64,
         stop_time: Option<f64>,
     ) -> Status {
-        if let Err(status) = self.check_phase("fmi2SetupExperiment", &[Instantiated]) {
+        if let Err(status) = self.check_phase(Call::SetupExperiment) {
             return status;
         }
         if !start_time.is_finite() {
@@ -290,7 +274,7 @@ impl Instance {
     }
 
     pub fn enter_initialization_mode(&mut self) -> Status {
-        if let Err(status) = self.check_phase("fmi2EnterInitializationMode", &[Instantiated]) {
+        if let Err(status) = self.check_phase(Call::EnterInitializationMode) {
             return status;
         }
         self.phase = InitializationMode;
@@ -298,7 +282,7 @@ impl Instance {
     }
 
     pub fn exit_initialization_mode(&mut self) -> Status {
-        if let Err(status) = self.check_phase("fmi2ExitInitializationMode", &[InitializationMode]) {
+        if let Err(status) = self.check_phase(Call::ExitInitializationMode) {
             return status;
         }
         self.outputs_current = false;
@@ -329,7 +313,7 @@ impl Instance {
     }
 
     pub fn terminate(&mut self) -> Status {
-        if let Err(status) = self.check_phase("fmi2Terminate", &[StepComplete, StepFailed, Error]) {
+        if let Err(status) = self.check_phase(Call::Terminate) {
             return status;
         }
         self.phase = Terminated;
@@ -338,6 +322,9 @@ impl Instance {
 
     /// Back to the state right after fmi2Instantiate: start values, no scene, time 0.
     pub fn reset(&mut self) -> Status {
+        if let Err(status) = self.check_phase(Call::Reset) {
+            return status;
+        }
         self.phase = Instantiated;
         self.values.clone_from(&self.defaults);
         self.scene = None;
@@ -411,15 +398,16 @@ impl Instance {
     /// variable kinds that type covers.
     pub fn get(
         &mut self,
-        function: &str,
+        call: Call,
         value_references: &[u32],
         out: &mut dyn FnMut(usize, f64),
         accepts: fn(&Kind) -> bool,
         type_name: &str,
     ) -> Status {
-        if let Err(status) = self.check_phase(function, READABLE) {
+        if let Err(status) = self.check_phase(call) {
             return status;
         }
+        let function = call.name();
         // Two passes over the references instead of a list of variables: getters run every
         // communication step, and allocate nothing.
         let mut any_output = false;
@@ -460,15 +448,16 @@ impl Instance {
     /// none is.
     pub fn set(
         &mut self,
-        function: &str,
+        call: Call,
         value_references: &[u32],
         value_at: &dyn Fn(usize) -> f64,
         accepts: fn(&Kind) -> bool,
         type_name: &str,
     ) -> Status {
-        if let Err(status) = self.check_phase(function, WRITABLE) {
+        if let Err(status) = self.check_phase(call) {
             return status;
         }
+        let function = call.name();
         for (i, &vr) in value_references.iter().enumerate() {
             let value = value_at(i);
             let var = match self.variable(function, vr, accepts, type_name) {
@@ -527,6 +516,39 @@ impl Instance {
         status
     }
 
+    /// The variable a derivative call names: a Real input (to set) or output (to get), at
+    /// order 1, the only one these FMUs declare (maxOutputDerivativeOrder = 1, first-order input
+    /// interpolation).
+    fn derivative_variable(
+        &self,
+        function: &str,
+        value_reference: u32,
+        order: i32,
+        causality: Causality,
+    ) -> Result<&'static Variable, Status> {
+        let var = self.variable(
+            function,
+            value_reference,
+            |k| matches!(k, Kind::Real { .. }),
+            "Real",
+        )?;
+        let (role, rule) = if causality == Causality::Input {
+            ("an input", "only inputs take derivatives")
+        } else {
+            ("an output", "only outputs have derivatives to get")
+        };
+        if var.causality != causality {
+            return Err(self.error(&format!("{function}: {} is not {role}: {rule}", var.name)));
+        }
+        if order != 1 {
+            return Err(self.error(&format!(
+                "{function}: order {order} for {}: expected order 1, the only one here (maxOutputDerivativeOrder = 1; inputs move linearly over a step)",
+                var.name
+            )));
+        }
+        Ok(var)
+    }
+
     /// fmi2SetRealInputDerivatives: first derivatives of inputs for the next fmi2DoStep only.
     /// All are checked before any is stored.
     pub fn set_input_derivatives(
@@ -536,30 +558,17 @@ impl Instance {
         derivatives: &[f64],
     ) -> Status {
         const FUNCTION: &str = "fmi2SetRealInputDerivatives";
-        if let Err(status) = self.check_phase(FUNCTION, WRITABLE) {
+        if let Err(status) = self.check_phase(Call::SetRealInputDerivatives) {
             return status;
         }
         if !interpolates_inputs(self.model.table) {
             return self.error(&format!("{FUNCTION}: {HELD_INPUTS}"));
         }
         for ((&vr, &order), &derivative) in value_references.iter().zip(orders).zip(derivatives) {
-            let var = match self.variable(FUNCTION, vr, |k| matches!(k, Kind::Real { .. }), "Real")
-            {
+            let var = match self.derivative_variable(FUNCTION, vr, order, Causality::Input) {
                 Ok(var) => var,
                 Err(status) => return status,
             };
-            if var.causality != Causality::Input {
-                return self.error(&format!(
-                    "{FUNCTION}: {} is not an input: only inputs take derivatives",
-                    var.name
-                ));
-            }
-            if order != 1 {
-                return self.error(&format!(
-                    "{FUNCTION}: order {order} for {}: only first derivatives (order 1) are supported",
-                    var.name
-                ));
-            }
             if !derivative.is_finite() {
                 return self.error(&format!(
                     "{FUNCTION}: the derivative of {} is {derivative}: expected a finite number",
@@ -595,9 +604,7 @@ impl Instance {
         out: &mut [f64],
     ) -> Status {
         const FUNCTION: &str = "fmi2GetRealOutputDerivatives";
-        if let Err(status) =
-            self.check_phase(FUNCTION, &[StepComplete, StepFailed, Terminated, Error])
-        {
+        if let Err(status) = self.check_phase(Call::GetRealOutputDerivatives) {
             return status;
         }
         if !interpolates_inputs(self.model.table) {
@@ -605,25 +612,11 @@ impl Instance {
                 "{FUNCTION}: this model gives no output derivatives (maxOutputDerivativeOrder = 0)"
             ));
         }
-        let max_order = 1;
         for (i, (&vr, &order)) in value_references.iter().zip(orders).enumerate() {
-            let var = match self.variable(FUNCTION, vr, |k| matches!(k, Kind::Real { .. }), "Real")
-            {
+            let var = match self.derivative_variable(FUNCTION, vr, order, Causality::Output) {
                 Ok(var) => var,
                 Err(status) => return status,
             };
-            if var.causality != Causality::Output {
-                return self.error(&format!(
-                    "{FUNCTION}: {} is not an output: only outputs have derivatives to get",
-                    var.name
-                ));
-            }
-            if order < 1 || order > max_order {
-                return self.error(&format!(
-                    "{FUNCTION}: order {order} for {}: expected 1 <= order <= maxOutputDerivativeOrder = {max_order}",
-                    var.name
-                ));
-            }
             let Some(scene) = self.scene.as_ref() else {
                 return self.error(&format!(
                     "{FUNCTION}: no scene: fmi2ExitInitializationMode has not succeeded"
@@ -644,7 +637,7 @@ impl Instance {
     }
 
     pub fn do_step(&mut self, current_communication_point: f64, step: f64) -> Status {
-        if let Err(status) = self.check_phase("fmi2DoStep", &[StepComplete]) {
+        if let Err(status) = self.check_phase(Call::DoStep) {
             return status;
         }
         if !step.is_finite() || step <= 0.0 {

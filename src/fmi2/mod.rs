@@ -9,6 +9,7 @@
 // of the crate denies it (src/lib.rs).
 #[allow(unsafe_code)]
 pub mod binary;
+pub mod calls;
 #[allow(unsafe_code)]
 pub mod exports;
 pub mod ffi;

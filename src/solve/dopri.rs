@@ -949,33 +949,12 @@ mod tests {
     use super::*;
     use crate::solve::narrow::Narrow;
 
-    /// y' = -2 t y, y(0) = 1: y = exp(-t^2).
-    struct Gauss;
-    impl Ode for Gauss {
-        fn dim(&self) -> usize {
-            1
-        }
-        fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
-            dydt[0] = -2.0 * t * y[0];
-        }
-    }
+    use crate::solve::test_odes::{AbsCos, Scalar};
 
-    /// y' = |cos t| has a kink in y' where cos t = 0; y = integral of |cos|.
-    struct AbsCos;
-    impl Ode for AbsCos {
-        fn dim(&self) -> usize {
-            1
-        }
-        fn rhs(&self, t: f64, _y: &[f64], dydt: &mut [f64]) {
-            dydt[0] = t.cos().abs();
-        }
-    }
-    impl Switching for AbsCos {
-        fn switches(&self, t: f64, _y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
-            out[0] = t.cos();
-            1
-        }
-    }
+    /// y' = -2 t y, y(0) = 1: y = exp(-t^2).
+    const GAUSS: Scalar = Scalar(|t, y| -2.0 * t * y);
+    /// y' = |cos t|: y = integral of |cos|.
+    const ABS_COS: AbsCos = AbsCos { decay: 0.0 };
 
     /// y' = forcing(t) - lambda y, with the decay marked for the integrating factor.
     struct Relax {
@@ -1171,7 +1150,7 @@ mod tests {
         for rtol in [1e-4, 1e-7, 1e-10] {
             let mut y = [1.0];
             dopri(rtol)
-                .integrate(&Gauss, 0.0, 3.0, &mut y, &mut Work::default())
+                .integrate(&GAUSS, 0.0, 3.0, &mut y, &mut Work::default())
                 .unwrap();
             let err = (y[0] - (-9.0f64).exp()).abs();
             assert!(err < 50.0 * rtol, "rtol {rtol}: error {err}");
@@ -1187,7 +1166,7 @@ mod tests {
             d.h = h;
             d.h_max = h;
             let mut y = [1.0];
-            d.integrate(&Gauss, 0.0, 2.0, &mut y, &mut Work::default())
+            d.integrate(&GAUSS, 0.0, 2.0, &mut y, &mut Work::default())
                 .unwrap();
             (y[0] - (-4.0f64).exp()).abs()
         };
@@ -1267,13 +1246,13 @@ mod tests {
         let mut y = [0.0];
         let mut with = Work::default();
         dopri(1e-10)
-            .integrate_switched(&AbsCos, 0.0, 10.0, &mut y, &mut with)
+            .integrate_switched(&ABS_COS, 0.0, 10.0, &mut y, &mut with)
             .unwrap();
         assert!((y[0] - exact).abs() < 1e-9, "error {}", y[0] - exact);
         let mut y = [0.0];
         let mut without = Work::default();
         dopri(1e-10)
-            .integrate(&AbsCos, 0.0, 10.0, &mut y, &mut without)
+            .integrate(&ABS_COS, 0.0, 10.0, &mut y, &mut without)
             .unwrap();
         assert!(with.rhs_evaluations < without.rhs_evaluations);
     }
@@ -1287,7 +1266,7 @@ mod tests {
             let mut y = [0.0];
             let mut work = Work::default();
             dopri(rtol)
-                .integrate_switched(&AbsCos, 0.0, 10.0, &mut y, &mut work)
+                .integrate_switched(&ABS_COS, 0.0, 10.0, &mut y, &mut work)
                 .unwrap();
             assert!((y[0] - exact).abs() < 20.0 * rtol, "error {}", y[0] - exact);
             assert_eq!(

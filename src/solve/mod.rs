@@ -14,6 +14,8 @@ pub mod rk4;
 pub mod root;
 pub mod shooting;
 pub mod stiffness;
+#[cfg(test)]
+mod test_odes;
 
 /// The largest state vector any scene integrates (including quadrature states such as the
 /// running integral of a force or of its power).

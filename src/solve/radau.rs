@@ -775,27 +775,12 @@ impl Radau5 {
 mod tests {
     use super::*;
 
-    /// y' = -y^2, y(0) = 1: y = 1/(1 + t).
-    struct Riccati;
-    impl Ode for Riccati {
-        fn dim(&self) -> usize {
-            1
-        }
-        fn rhs(&self, _t: f64, y: &[f64], dydt: &mut [f64]) {
-            dydt[0] = -y[0] * y[0];
-        }
-    }
+    use crate::solve::test_odes::{AbsCos, Scalar};
 
+    /// y' = -y^2, y(0) = 1: y = 1/(1 + t).
+    const RICCATI: Scalar = Scalar(|_, y| -y * y);
     /// y' = y cos t, y(0) = 1: y = exp(sin t).
-    struct Modulated;
-    impl Ode for Modulated {
-        fn dim(&self) -> usize {
-            1
-        }
-        fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
-            dydt[0] = y[0] * t.cos();
-        }
-    }
+    const MODULATED: Scalar = Scalar(|t, y| y * t.cos());
 
     /// Prothero-Robinson: y' = lambda (y - sin t) + cos t, y = sin t for y(0) = 0.
     struct ProtheroRobinson(f64);
@@ -820,7 +805,7 @@ mod tests {
         let error = |h: f64| {
             let mut y = [1.0];
             fixed(h)
-                .integrate(&Modulated, 0.0, 4.0, &mut y, &mut Work::default())
+                .integrate(&MODULATED, 0.0, 4.0, &mut y, &mut Work::default())
                 .unwrap();
             (y[0] - 4f64.sin().exp()).abs()
         };
@@ -850,29 +835,15 @@ mod tests {
             let mut y = [1.0];
             let mut solver = Radau5::new(rtol, rtol, 10.0);
             solver
-                .integrate(&Riccati, 0.0, 10.0, &mut y, &mut Work::default())
+                .integrate(&RICCATI, 0.0, 10.0, &mut y, &mut Work::default())
                 .unwrap();
             let err = (y[0] - 1.0 / 11.0).abs();
             assert!(err < 100.0 * rtol, "rtol {rtol}: error {err}");
         }
     }
 
-    /// y' = |cos t| - y/10 (stiffness is not the point): a kink in y' wherever cos t = 0.
-    struct AbsCos;
-    impl Ode for AbsCos {
-        fn dim(&self) -> usize {
-            1
-        }
-        fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
-            dydt[0] = t.cos().abs() - 0.1 * y[0];
-        }
-    }
-    impl Switching for AbsCos {
-        fn switches(&self, t: f64, _y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
-            out[0] = t.cos();
-            1
-        }
-    }
+    /// y' = |cos t| - y/10 (stiffness is not the point).
+    const ABS_COS: AbsCos = AbsCos { decay: 0.1 };
 
     /// Oracle: a run with a step bound far below the kinks' effect (h_max 1e-3, rtol 1e-13).
     /// Ending steps on the kinks gives a result within the tolerance, and closer to the oracle
@@ -881,15 +852,15 @@ mod tests {
     fn steps_end_on_kinks() {
         let mut fine = Radau5::new(1e-13, 1e-13, 1e-3);
         let mut reference = [0.0];
-        fine.integrate(&AbsCos, 0.0, 10.0, &mut reference, &mut Work::default())
+        fine.integrate(&ABS_COS, 0.0, 10.0, &mut reference, &mut Work::default())
             .unwrap();
         let mut with = [0.0];
         Radau5::new(1e-8, 1e-8, 10.0)
-            .integrate_switched(&AbsCos, 0.0, 10.0, &mut with, &mut Work::default())
+            .integrate_switched(&ABS_COS, 0.0, 10.0, &mut with, &mut Work::default())
             .unwrap();
         let mut without = [0.0];
         Radau5::new(1e-8, 1e-8, 10.0)
-            .integrate(&AbsCos, 0.0, 10.0, &mut without, &mut Work::default())
+            .integrate(&ABS_COS, 0.0, 10.0, &mut without, &mut Work::default())
             .unwrap();
         let (e_with, e_without) = (
             (with[0] - reference[0]).abs(),

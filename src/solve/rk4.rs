@@ -76,23 +76,12 @@ impl Integrator for Rk4 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// y'' = -y as a system: y = (cos t, -sin t).
-    struct Oscillator;
-    impl Ode for Oscillator {
-        fn dim(&self) -> usize {
-            2
-        }
-        fn rhs(&self, _t: f64, y: &[f64], dydt: &mut [f64]) {
-            dydt[0] = y[1];
-            dydt[1] = -y[0];
-        }
-    }
+    use crate::solve::test_odes::Harmonic;
 
     fn error(h: f64) -> f64 {
         let mut y = [1.0, 0.0];
         Rk4 { h_max: h }
-            .integrate(&Oscillator, 0.0, 2.0, &mut y, &mut Work::default())
+            .integrate(&Harmonic, 0.0, 2.0, &mut y, &mut Work::default())
             .unwrap();
         (y[0] - 2f64.cos()).hypot(y[1] + 2f64.sin())
     }
