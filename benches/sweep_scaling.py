@@ -46,6 +46,7 @@ def main():
     preset = PRESETS["fig8"]
     plan = preset["plan"]()
     plan.fixed.pop("tolerance")
+    plan.fixed["initial"] = "sliding"  # a fixed workload: the transient, periods as asked
     plan.stop_time = Span(args.periods, "f")
     fmu = preset["fmu"]
     load = os.getloadavg()[0]

@@ -45,21 +45,26 @@ stage() {
     echo "== $1 ($cpu s of CPU so far)"
 }
 
+# Clippy lints the crate as the tests' build compiles it. clippy-driver is rustc with clippy's
+# lints; as cargo's workspace wrapper it compiles every target of this package that `cargo test`
+# builds (the library, its unit tests, the integration tests, the examples, the command) with the
+# warnings denied, as `cargo clippy --all-targets -- -D warnings` would, while the dependencies
+# are compiled once, by rustc: a `cargo clippy` of its own would check every one of them again.
+linted() {
+    RUSTC_WORKSPACE_WRAPPER="$(rustc --print sysroot)/bin/clippy-driver" CLIPPY_ARGS="-Dwarnings" "$@"
+}
+
 stage "cargo fmt --check"
 cargo fmt --check
-stage "cargo clippy"
-# In the tests' profile: the build scripts and procedural macros (bindgen's among them) are built
-# once for both.
-cargo clippy --all-targets --profile testing -- -D warnings
-stage "cargo test"
+stage "cargo test, linted by clippy"
 # The testing profile (Cargo.toml) builds in target/testing: the main command's target/release is
 # left as it is, so neither rebuilds the other. It also builds the friction-fmu command, which
 # packs the FMUs below (the release build would compile everything again, with fat LTO). Before
 # that packing, which refreshes modelDescription/: a test checks the committed copy.
-cargo test --profile testing
+linted cargo test --profile testing
 BIN=target/testing/friction-fmu
 stage "fuzzing under valgrind memcheck (invalid reads and writes, use after free)"
-FUZZ_BIN=$(cargo test --profile testing --test fuzz_calls --no-run 2>&1 | grep -o 'target/testing/deps/fuzz_calls-[0-9a-f]*' | head -1)
+FUZZ_BIN=$(linted cargo test --profile testing --test fuzz_calls --no-run 2>&1 | grep -o 'target/testing/deps/fuzz_calls-[0-9a-f]*' | head -1)
 FUZZ_SEQUENCES=10000 valgrind --error-exitcode=9 --leak-check=no -q "$FUZZ_BIN" random_call_sequences
 stage "packing the FMUs"
 $BIN build

@@ -2,9 +2,11 @@
 
 `fig8`: the steady mean friction force of Scene T over drive velocity x vibration velocity at 3
 and 2 kHz (Fig. 8 of the transverse-vibration paper), with the values `friction-fmu run` uses
-for its table (src/report/transverse.rs): 120 periods from steady sliding to settle, then the
-mean of FFx over the 30 periods that follow. FFx_mean is the mean over the period just
-completed; sampled once per period, the mean of its last 30 samples is that 30-period mean.
+for its table (src/report/transverse.rs): each point starts on its periodic orbit (`initial =
+periodic`), and the mean of FFx is taken over 30 periods. FFx_mean is the mean over the period
+just completed; sampled once per period, the mean of its last 30 samples is that 30-period mean.
+Where shooting stalls short of the tolerance (stick-slip at the slowest drives), the FMU warns,
+the point's status says so, and the run starts from the state nearest to the orbit.
 """
 import pathlib
 

@@ -236,6 +236,7 @@ impl Longitudinal {
         let scale = (self.fc / self.stiffness()).min(self.slip_per_period());
         let orbit = map(&[0.0], 1e-6).and_then(|guess| {
             shooting::periodic_orbit(&guess, (&[scale], &[false]), rtol, &mut map)
+                .map_err(String::from)
         });
         self.work = self.work.plus(&work);
         self.z = orbit?.state[0];

@@ -262,6 +262,7 @@ impl Oscillator {
             let w = values.real(vr::W);
             let scale = [u_scale, u_scale * w];
             shooting::periodic_orbit(&guess, (&scale, &[false, false]), rtol, &mut map)
+                .map_err(String::from)
         });
         self.work = self.work.plus(&work);
         let orbit = orbit?;

@@ -32,7 +32,7 @@ use crate::solve::narrow::Narrow;
 use crate::solve::phase::{cos_turns, turns};
 use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
-use crate::solve::shooting;
+use crate::solve::shooting::{self, NoOrbit};
 use crate::solve::{within_step_budget, Integrator, Ode, Work, MAX_DIM};
 use nalgebra::Vector2;
 use std::cell::Cell;
@@ -495,9 +495,15 @@ impl Transverse {
                         .into(),
                 );
             }
-            if let Err(why) = scene.settle_on_orbit(values, scope) {
+            if let Err(no_orbit) = scene.settle_on_orbit(values, scope) {
+                let start = if no_orbit.nearest.is_some() {
+                    "the state nearest to closing the period"
+                } else {
+                    "steady sliding instead"
+                };
                 scene.notice = Some(format!(
-                    "initial = periodic: {why}; the run starts from steady sliding instead and goes through the transient"
+                    "initial = periodic: {}; the run starts from {start} and goes through the transient",
+                    no_orbit.why
                 ));
             }
         }
@@ -515,8 +521,9 @@ impl Transverse {
 
     /// Replaces the initial state by the periodic orbit's at the start time, found by shooting
     /// on the one-period map ([`crate::solve::shooting`]) with this scene's solver, from steady
-    /// sliding. The periods it integrates count in [`Transverse::work`].
-    fn settle_on_orbit(&mut self, values: &ValueSet, scope: &Scope) -> Result<(), String> {
+    /// sliding; where shooting stalls short of the tolerance, by the state nearest to closing
+    /// the period. The periods it integrates count in [`Transverse::work`].
+    fn settle_on_orbit(&mut self, values: &ValueSet, scope: &Scope) -> Result<(), NoOrbit> {
         let n = self.coupled();
         let period = 1.0 / self.p.f;
         let start_time = self.t;
@@ -553,12 +560,19 @@ impl Transverse {
         let settling: Vec<bool> = (0..n).map(|j| j == ZX || j == ZY).collect();
         let orbit = shooting::periodic_orbit(&guess, (&scale[..n], &settling), rtol, &mut map);
         self.work = self.work.plus(&work);
-        let orbit = orbit?;
+        let start = match &orbit {
+            Ok(orbit) => orbit.state.clone(),
+            Err(NoOrbit {
+                nearest: Some(nearest),
+                ..
+            }) => nearest.clone(),
+            Err(_) => return orbit.map(|_| ()),
+        };
         *self = Transverse {
             work: self.work,
-            ..Transverse::starting_from(values, start_time, scope, Some(&orbit.state))?
+            ..Transverse::starting_from(values, start_time, scope, Some(&start))?
         };
-        Ok(())
+        orbit.map(|_| ())
     }
 
     /// The scene at `start_time` from the initial state the values ask for, or, given, from

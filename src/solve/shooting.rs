@@ -30,6 +30,33 @@ pub struct Orbit {
 /// The most Newton-Broyden iterations after the Jacobian.
 const MAX_ITERATIONS: usize = 12;
 
+/// Why shooting found no orbit and, where the iterations stalled short of the tolerance (a map
+/// that is not smooth, at stick-slip, holds Newton's method back), the state nearest to closing
+/// the period: a better start for the transient than the guess.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NoOrbit {
+    pub why: String,
+    pub nearest: Option<Vec<f64>>,
+}
+
+impl From<String> for NoOrbit {
+    fn from(why: String) -> Self {
+        NoOrbit { why, nearest: None }
+    }
+}
+
+impl From<&str> for NoOrbit {
+    fn from(why: &str) -> Self {
+        why.to_string().into()
+    }
+}
+
+impl From<NoOrbit> for String {
+    fn from(no_orbit: NoOrbit) -> Self {
+        no_orbit.why
+    }
+}
+
 /// Finds y with P(y) = y to `tolerance` in each component relative to `scale` (the size each
 /// state takes on the orbit), from `guess`; `settling` marks the states that settle within a
 /// period. Errors say why it did not converge: the caller falls back to the transient.
@@ -38,7 +65,7 @@ pub fn periodic_orbit(
     (scale, settling): (&[f64], &[bool]),
     tolerance: f64,
     map: &mut PeriodMap,
-) -> Result<Orbit, String> {
+) -> Result<Orbit, NoOrbit> {
     let n = guess.len();
     let mut periods = 0;
     let coarse = COARSE.max(tolerance);
@@ -84,6 +111,7 @@ pub fn periodic_orbit(
             Ok::<_, String>(jacobian)
         };
     let mut jacobian = differenced(&mut residual, &y, &r, &mut periods)?;
+    let mut nearest = (size(&r), y.clone());
     for _ in 0..MAX_ITERATIONS {
         let Some(delta) = jacobian.clone().lu().solve(&(-&r)) else {
             return Err("the one-period map's Jacobian is singular".into());
@@ -104,7 +132,8 @@ pub fn periodic_orbit(
             if largest > 1.0 {
                 return Err(format!(
                     "the period-1 orbit found is unstable (a Floquet multiplier of size {largest:.3}): the motion settles elsewhere, maybe on a longer period"
-                ));
+                )
+                .into());
             }
             return Ok(Orbit {
                 state: y_next.as_slice().to_vec(),
@@ -115,7 +144,8 @@ pub fn periodic_orbit(
             return Err(format!(
                 "Newton's iteration diverged (residual {:.1e} of the states' scale)",
                 size(&r_next)
-            ));
+            )
+            .into());
         }
         // Broyden's rank-one update: the secant condition J delta = r_next - r.
         let dd = delta.dot(&delta);
@@ -123,12 +153,18 @@ pub fn periodic_orbit(
             let correction = (&r_next - &r - &jacobian * &delta) / dd;
             jacobian += correction * delta.transpose();
         }
+        if size(&r_next) < nearest.0 {
+            nearest = (size(&r_next), y_next.clone());
+        }
         (y, r) = (y_next, r_next);
     }
-    Err(format!(
-        "no periodic orbit to the tolerance after {MAX_ITERATIONS} iterations (residual {:.1e} of the states' scale): the motion may not be period-1",
-        size(&r)
-    ))
+    Err(NoOrbit {
+        why: format!(
+            "no periodic orbit to the tolerance after {MAX_ITERATIONS} iterations (residual {:.1e} of the states' scale at the nearest): the motion may not be period-1",
+            nearest.0
+        ),
+        nearest: Some(nearest.1.as_slice().to_vec()),
+    })
 }
 
 #[cfg(test)]
@@ -168,6 +204,6 @@ mod tests {
         // y -> 2 y - 1 has the fixed point 1, which repels: refused as unstable.
         let mut repelling = |y: &[f64], _: f64| Ok(vec![2.0 * y[0] - 1.0]);
         let refused = periodic_orbit(&[0.5], (&[1.0], &[false]), 1e-10, &mut repelling);
-        assert!(refused.unwrap_err().contains("unstable"));
+        assert!(refused.unwrap_err().why.contains("unstable"));
     }
 }

@@ -103,6 +103,22 @@ def test_discarded_step_is_recorded_with_its_time():
     assert 0.1 < rows[0]["FFx_mean"] < 1.2
 
 
+def test_a_point_the_fmu_warned_about_ran_and_carries_its_words():
+    # With a periodic start, shooting closes the period at vd 0.5 mm/s; at vd 0.1 mm/s it stalls
+    # short of the tolerance (stick-slip), and the FMU warns and runs the transient from the
+    # nearest state. Both points ran: neither failed, and the warning is in the row.
+    plan = Plan(grid={"vd": [5e-4, 1e-4]},
+                fixed={"va": 3e-4, "f": F, "initial": "periodic", "tolerance": 1e-8},
+                outputs=[Output("FFx_mean")], stop_time=Span(2.0, "f"), step=Span(1.0, "f"))
+    rows, summary = run_sweep(fmu_path(MODEL), plan, workers=1, progress=False)
+    assert [r["status"] for r in rows] == ["ok", "warning"]
+    assert rows[0]["message"] == ""
+    assert "initial = periodic: no periodic orbit to the tolerance" in rows[1]["message"]
+    assert "starts from the state nearest to closing the period" in rows[1]["message"]
+    assert all(math.isfinite(r["FFx_mean"]) for r in rows)
+    assert (summary["failed"], summary["warned"]) == (0, 1)
+
+
 def _rows_without_wall_time(path):
     with open(path) as handle:
         rows = list(csv.DictReader(handle))
@@ -164,8 +180,9 @@ def test_fig8_grid_file_and_times_per_point():
     points = fig8.points()
     assert len(points) == 6 * 6 * 2
     assert points[1].values == {"vd": 1e-4, "va": 3e-4, "f": 2000.0}  # last axis fastest
-    # 150 periods at 3 kHz, averaged over the last 30
-    assert fig8.stop_time.at({"f": 3000.0}) == pytest.approx(0.05, rel=1e-15)
+    # 30 periods at 3 kHz from the periodic orbit, all of them averaged
+    assert fig8.fixed["initial"] == "periodic"
+    assert fig8.stop_time.at({"f": 3000.0}) == pytest.approx(0.01, rel=1e-15)
     assert fig8.outputs[1].window.at({"f": 3000.0}) == pytest.approx(0.01, rel=1e-15)
     assert fig8.outputs[1].column == "FFx_mean:mean_last=30/f"
     assert parse_assignment("vd=0.1e-3, 5e-4,1e-3") == ("vd", [1e-4, 5e-4, 1e-3])
