@@ -6,7 +6,6 @@
 
 use super::ffi::Status;
 use super::logger::{Logger, CATEGORY_CALLS, CATEGORY_ERROR, CATEGORY_WARNING};
-use crate::interface::interpolates_inputs;
 use crate::interface::unread_inputs::UnreadInputs;
 use crate::interface::values::{check_value, ValueSet};
 use crate::interface::variable::{
@@ -503,7 +502,7 @@ impl Instance {
             }
             // An input set again without a derivative is held (FMI 2.0, 4.2.1, leaves this
             // open; holding is what a master that sets no derivative expects).
-            if interpolates_inputs(self.model.table)
+            if self.model.table.interpolates_inputs
                 && self.model.table.variable(vr).map(|v| v.causality) == Some(Causality::Input)
             {
                 self.pending_derivatives.retain(|&(r, _)| r != vr);
@@ -561,7 +560,7 @@ impl Instance {
         if let Err(status) = self.check_phase(Call::SetRealInputDerivatives) {
             return status;
         }
-        if !interpolates_inputs(self.model.table) {
+        if !self.model.table.interpolates_inputs {
             return self.error(&format!("{FUNCTION}: {HELD_INPUTS}"));
         }
         for ((&vr, &order), &derivative) in value_references.iter().zip(orders).zip(derivatives) {
@@ -607,7 +606,7 @@ impl Instance {
         if let Err(status) = self.check_phase(Call::GetRealOutputDerivatives) {
             return status;
         }
-        if !interpolates_inputs(self.model.table) {
+        if !self.model.table.interpolates_inputs {
             return self.error(&format!(
                 "{FUNCTION}: this model gives no output derivatives (maxOutputDerivativeOrder = 0)"
             ));

@@ -207,6 +207,9 @@ pub const TABLE: ModelTable = ModelTable {
         item: "input",
         input: "V_in",
     }],
+    interpolates_inputs: true,
+    law_parameter: None,
+    tolerance_parameter: None,
     default_experiment: DefaultExperiment {
         start_time: 0.0,
         // Five mechanical time constants: the start transient to steady speed.

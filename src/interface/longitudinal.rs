@@ -329,6 +329,9 @@ pub const TABLE: ModelTable = ModelTable {
             input: "FN_in",
         },
     ],
+    interpolates_inputs: true,
+    law_parameter: Some("law"),
+    tolerance_parameter: Some("tolerance"),
     default_experiment: DefaultExperiment {
         start_time: 0.0,
         // 42 vibration periods at 60 kHz, reported every microsecond (a whole number of

@@ -20,16 +20,6 @@ pub const MODELS: &[&variable::ModelTable] = &[
     &drive::TABLE,
 ];
 
-/// Models whose inputs may move linearly over a communication step (fmi2SetRealInputDerivatives,
-/// first order) and that give first derivatives of some outputs: modelDescription.xml declares
-/// canInterpolateInputs and maxOutputDerivativeOrder = 1 for them. The scenes' own
-/// `set_input_derivative` is the runtime side of the same promise.
-pub const INTERPOLATING: &[&str] = &["LongitudinalFriction", "TransverseFriction", "DriveTrain"];
-
-pub fn interpolates_inputs(table: &variable::ModelTable) -> bool {
-    INTERPOLATING.contains(&table.model_identifier)
-}
-
 #[cfg(test)]
 mod tests {
     use super::values::{check_value, ValueSet};

@@ -230,6 +230,9 @@ pub const TABLE: ModelTable = ModelTable {
         item: "input",
         input: "P_in",
     }],
+    interpolates_inputs: false,
+    law_parameter: Some("law"),
+    tolerance_parameter: Some("rtol"),
     default_experiment: DefaultExperiment {
         start_time: 0.0,
         // 60 forcing periods at w = 1 (377 s): with c = 0.1 the free response decays as

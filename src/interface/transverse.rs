@@ -331,6 +331,9 @@ pub const TABLE: ModelTable = ModelTable {
         item: "input",
         input: "vd_in",
     }],
+    interpolates_inputs: true,
+    law_parameter: Some("slip_law"),
+    tolerance_parameter: Some("tolerance"),
     default_experiment: DefaultExperiment {
         start_time: 0.0,
         // 150 vibration periods at 3 kHz (the drive mode, ~200 Hz, settles in a few ms),

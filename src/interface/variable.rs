@@ -149,6 +149,16 @@ pub struct ModelTable {
     pub enum_types: &'static [EnumType],
     /// The inputs each switch governs.
     pub input_switches: &'static [InputSwitch],
+    /// Whether inputs may move linearly over a communication step (fmi2SetRealInputDerivatives,
+    /// first order) and some outputs give first derivatives: modelDescription.xml declares
+    /// canInterpolateInputs and maxOutputDerivativeOrder = 1. The scene's own
+    /// `set_input_derivative` is the runtime side of the same promise.
+    pub interpolates_inputs: bool,
+    /// The switch a scene file's top-level `law` key sets; None for a model with no friction
+    /// law, which a scene file cannot trim.
+    pub law_parameter: Option<&'static str>,
+    /// The parameter the adaptive solvers integrate to, which the experiment's tolerance states.
+    pub tolerance_parameter: Option<&'static str>,
     pub default_experiment: DefaultExperiment,
 }
 

@@ -55,7 +55,7 @@ impl<'a> Interface<'a> {
                 step: e.step_size,
                 tolerance: Some(e.tolerance),
             },
-            interpolates_inputs: crate::interface::interpolates_inputs(table),
+            interpolates_inputs: table.interpolates_inputs,
             hidden: "",
         }
     }

@@ -4,16 +4,7 @@
 
 use crate::interface::variable::{Causality, Kind, ModelTable, Variable};
 use crate::scene_file::SceneFile;
-
-fn equations(model_identifier: &str) -> &'static str {
-    match model_identifier {
-        "LongitudinalFriction" => include_str!("docs/LongitudinalFriction.html"),
-        "TransverseFriction" => include_str!("docs/TransverseFriction.html"),
-        "DryFrictionOscillator" => include_str!("docs/DryFrictionOscillator.html"),
-        "DriveTrain" => include_str!("docs/DriveTrain.html"),
-        _ => "",
-    }
-}
+use crate::scenes::Model;
 
 fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
@@ -111,11 +102,12 @@ fn html(title: &str, description: &str, body: &str) -> String {
     )
 }
 
-pub fn page(table: &ModelTable) -> String {
+pub fn page(model: &Model) -> String {
+    let table = model.table;
     let variables: Vec<&Variable> = table.variables.iter().collect();
     let body = format!(
         "{}\n{}",
-        equations(table.model_identifier),
+        model.documentation,
         sections(table, &variables, &table_start)
     );
     html(table.model_identifier, table.description, &body)
@@ -134,14 +126,14 @@ pub fn scene_page(scene: &SceneFile) -> String {
         model = table.model_identifier,
         kept = sections(table, &scene.kept_variables(), &value),
         fixed = section("Fixed values", "value", &rows(table, fixed.into_iter(), &value)),
-        equations = equations(table.model_identifier),
+        equations = scene.model.documentation,
     );
     html(&scene.name, &scene.description, &body)
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{equations, page, scene_page};
+    use super::{page, scene_page};
 
     /// Every model ships a written description, and its page lists every variable.
     #[test]
@@ -149,10 +141,10 @@ mod tests {
         for model in crate::scenes::MODELS {
             let id = model.table.model_identifier;
             assert!(
-                equations(id).contains("<h2>Source</h2>"),
+                model.documentation.contains("<h2>Source</h2>"),
                 "{id} has no description"
             );
-            let html = page(model.table);
+            let html = page(model);
             for v in model.table.variables {
                 assert!(
                     html.contains(&format!("<code>{}</code>", v.name)),

@@ -157,13 +157,12 @@ pub fn pack(model_identifier: &str, libraries: &[Library], out_dir: &Path) -> io
     let not_found = |what: String| io::Error::new(io::ErrorKind::NotFound, what);
     let xml = model_description(model_identifier)
         .ok_or_else(|| not_found(format!("no model {model_identifier} in this build")))?;
-    let table = crate::scenes::model(model_identifier)
-        .ok_or_else(|| not_found(format!("no scene for {model_identifier}")))?
-        .table;
+    let model = crate::scenes::model(model_identifier)
+        .ok_or_else(|| not_found(format!("no scene for {model_identifier}")))?;
     let contents = Contents {
         model_identifier,
         xml,
-        documentation: &documentation::page(table),
+        documentation: &documentation::page(model),
         resources: &[],
     };
     write_fmu(&contents, libraries, (model_identifier, false), out_dir)

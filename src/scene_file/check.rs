@@ -10,21 +10,7 @@ use crate::interface::variable::{
 use crate::model_description::Experiment;
 use crate::scenes::Model;
 
-/// What the top-level `law` key sets in each model.
-pub(super) const LAW_PARAMETER: &[(&str, &str)] = &[
-    ("LongitudinalFriction", "law"),
-    ("TransverseFriction", "slip_law"),
-    ("DryFrictionOscillator", "law"),
-];
-
 const SOLVER_PARAMETER: &str = "solver";
-
-/// The parameter each model's adaptive solvers integrate to: the experiment's tolerance states it.
-const TOLERANCE_PARAMETER: &[(&str, &str)] = &[
-    ("LongitudinalFriction", "tolerance"),
-    ("TransverseFriction", "tolerance"),
-    ("DryFrictionOscillator", "rtol"),
-];
 
 /// Checks a scene file of one of `models`.
 pub fn scene(
@@ -39,13 +25,13 @@ pub fn scene(
     let model = models
         .iter()
         .find(|m| m.table.model_identifier == raw.model);
-    let model = model.filter(|m| {
-        LAW_PARAMETER
-            .iter()
-            .any(|(id, _)| *id == m.table.model_identifier)
-    });
+    let model = model.filter(|m| m.table.law_parameter.is_some());
     let model = model.ok_or_else(|| {
-        let known: Vec<&str> = LAW_PARAMETER.iter().map(|(id, _)| *id).collect();
+        let known: Vec<&str> = models
+            .iter()
+            .filter(|m| m.table.law_parameter.is_some())
+            .map(|m| m.table.model_identifier)
+            .collect();
         error(
             "model",
             format!(
@@ -66,10 +52,7 @@ pub fn scene(
             ));
         }
     }
-    let law_name = LAW_PARAMETER
-        .iter()
-        .find(|(id, _)| *id == table.model_identifier)
-        .map_or("law", |(_, name)| name);
+    let law_name = table.law_parameter.unwrap_or("law");
     let mut values = ValueSet::start(table);
 
     // law and solver first: they are enumerations named by item.
@@ -187,10 +170,9 @@ pub fn scene(
     kept.sort_by_key(|&vr| table.variables.iter().position(|v| v.value_reference == vr));
     let mut experiment = experiment(&raw.experiment).map_err(|(key, m)| error(key, m))?;
     // The DefaultExperiment's tolerance is the one the FMU integrates to, never a second number.
-    if let Some(var) = TOLERANCE_PARAMETER
-        .iter()
-        .find(|(id, _)| *id == table.model_identifier)
-        .and_then(|(_, name)| table.by_name(name))
+    if let Some(var) = table
+        .tolerance_parameter
+        .and_then(|name| table.by_name(name))
     {
         let used = values.real(var.value_reference);
         match experiment.tolerance {

@@ -60,8 +60,7 @@ impl SceneFile {
             enum_types: self.model.table.enum_types,
             experiment: self.experiment,
             // Only a kept input can be interpolated; the output derivatives come with it.
-            interpolates_inputs: keeps_input
-                && crate::interface::interpolates_inputs(self.model.table),
+            interpolates_inputs: keeps_input && self.model.table.interpolates_inputs,
             hidden: &hidden,
         }
         .write()

@@ -64,9 +64,7 @@ pub fn parse(file: &str, text: &str) -> Result<SceneFile, String> {
 /// Whether a scene file can trim the model: those with a friction law (DriveTrain has nothing to
 /// trim).
 pub fn trimmable(model_identifier: &str) -> bool {
-    check::LAW_PARAMETER
-        .iter()
-        .any(|(id, _)| *id == model_identifier)
+    crate::scenes::model(model_identifier).is_some_and(|m| m.table.law_parameter.is_some())
 }
 
 /// Parses and checks a scene file of one of `models` (an FMU's library knows only its own).

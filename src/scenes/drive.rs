@@ -16,7 +16,7 @@
 
 use super::switch::{DriveSolver, Switch, VoltageSource};
 use super::{require_finite_start, require_non_negative, require_positive, Scene};
-use crate::interface::drive::vr;
+use crate::interface::drive::{vr, TABLE};
 use crate::interface::values::ValueSet;
 use crate::solve::expm::{expm, mul_vec, Matrix, Propagators};
 use std::f64::consts::TAU;
@@ -234,7 +234,7 @@ impl Scene for Drive {
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
-        super::check_saved("DriveTrain", state, 6)?;
+        super::check_saved(TABLE.model_identifier, state, 6)?;
         self.t = state[0];
         self.y.copy_from_slice(&state[1..4]);
         self.input_rates = [state[4], state[5]];
@@ -268,6 +268,9 @@ impl Scene for Drive {
         }
     }
 }
+
+#[cfg(feature = "tools")]
+pub mod stability;
 
 #[cfg(test)]
 mod tests;

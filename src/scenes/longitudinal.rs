@@ -18,6 +18,8 @@
 //! FN / (m g).
 
 mod ode;
+#[cfg(feature = "tools")]
+pub mod stability;
 
 use super::period_mean::PeriodMean;
 use super::switch::{
@@ -1138,8 +1140,8 @@ mod tests {
 
     /// Dahl with alpha < 1 saturates after a finite sliding distance, where the rate's slope is
     /// unbounded. The adaptive solvers stop within their tolerance of that corner and hold the
-    /// bristle from there: before they did, dopri5 took 760 000 right-hand sides over these 10
-    /// periods at alpha 0.3 and radau5 gave up in the first one. Oracle: the exponential scheme
+    /// bristle from there (what they did before: docs/performance.md, "Measurements behind the
+    /// code"). Oracle: the exponential scheme
     /// (exact bristle update, second order) at 16 000 steps a period, with a Richardson
     /// correction from 4 000, within about 1e-10 of the limit.
     #[test]

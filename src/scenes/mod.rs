@@ -6,6 +6,8 @@ pub mod longitudinal;
 pub mod oscillator;
 pub mod period_mean;
 pub mod scope;
+#[cfg(feature = "tools")]
+pub mod stability;
 pub mod switch;
 pub mod transverse;
 
@@ -115,30 +117,54 @@ pub const HELD_INPUTS: &str =
 pub type Builder =
     fn(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Box<dyn Scene>, String>;
 
-/// A model this crate exports: its interface and how to build it.
+/// A model this crate exports, everything about it in one place: its interface (the variable
+/// table, with which switches select which inputs and its law and tolerance parameters), how to
+/// build it, and, for packing and the report, its documentation page and stability cases.
 pub struct Model {
     pub table: &'static ModelTable,
     pub build: Builder,
+    /// The model's page in the FMU's documentation/index.html, before its variables.
+    #[cfg(feature = "tools")]
+    pub documentation: &'static str,
+    #[cfg(feature = "tools")]
+    pub stability: stability::Cases,
 }
 
 // One constant per model, so that an FMU's library that names one links none of the others.
 pub const LONGITUDINAL: Model = Model {
     table: &crate::interface::longitudinal::TABLE,
     build: longitudinal::build,
+    #[cfg(feature = "tools")]
+    documentation: include_str!("longitudinal/documentation.html"),
+    #[cfg(feature = "tools")]
+    stability: longitudinal::stability::CASES,
 };
 pub const TRANSVERSE: Model = Model {
     table: &crate::interface::transverse::TABLE,
     build: transverse::build,
+    #[cfg(feature = "tools")]
+    documentation: include_str!("transverse/documentation.html"),
+    #[cfg(feature = "tools")]
+    stability: transverse::stability::CASES,
 };
 pub const OSCILLATOR: Model = Model {
     table: &crate::interface::oscillator::TABLE,
     build: oscillator::build,
+    #[cfg(feature = "tools")]
+    documentation: include_str!("oscillator/documentation.html"),
+    #[cfg(feature = "tools")]
+    stability: oscillator::stability::CASES,
 };
 pub const DRIVE: Model = Model {
     table: &crate::interface::drive::TABLE,
     build: drive::build,
+    #[cfg(feature = "tools")]
+    documentation: include_str!("drive/documentation.html"),
+    #[cfg(feature = "tools")]
+    stability: drive::stability::CASES,
 };
 
+/// The registry: adding a model is a line here (and its constant above).
 pub const MODELS: &[Model] = &[LONGITUDINAL, TRANSVERSE, OSCILLATOR, DRIVE];
 
 pub fn model(model_identifier: &str) -> Option<&'static Model> {
@@ -258,9 +284,21 @@ pub fn resolved_energy(rtol: f64, fc: f64, kt: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::{Scope, MODELS};
-    use crate::interface::interpolates_inputs;
+    use crate::interface;
     use crate::interface::values::ValueSet;
     use crate::interface::variable::Causality;
+
+    /// build.rs writes a modelDescription.xml for each table of `interface::MODELS`, which it
+    /// can see; every one is a model here, and every model's table is there, in the same order.
+    #[test]
+    fn the_registry_lists_the_tables_build_rs_describes() {
+        let models: Vec<&str> = MODELS.iter().map(|m| m.table.model_identifier).collect();
+        let tables: Vec<&str> = interface::MODELS
+            .iter()
+            .map(|t| t.model_identifier)
+            .collect();
+        assert_eq!(models, tables);
+    }
 
     /// What modelDescription.xml declares (canInterpolateInputs) is what the scenes do: every
     /// input of an interpolating model takes a derivative, no input of another model does.
@@ -279,7 +317,7 @@ mod tests {
                     scene
                         .set_input_derivative(input.value_reference, 1.0)
                         .is_ok(),
-                    interpolates_inputs(model.table),
+                    model.table.interpolates_inputs,
                     "{} {}",
                     model.table.model_identifier,
                     input.name

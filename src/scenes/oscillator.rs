@@ -14,13 +14,15 @@
 
 pub mod exact;
 mod solver;
+#[cfg(feature = "tools")]
+pub mod stability;
 
 use super::switch::{
     ForceSource, OscillatorInitialState, OscillatorLaw, OscillatorSolver, Switch as _,
 };
 use super::{require_finite, require_non_negative, require_positive, Scene, Scope};
 use crate::friction::regularized::{stiction_excess, Regularized};
-use crate::interface::oscillator::vr;
+use crate::interface::oscillator::{vr, TABLE};
 use crate::interface::values::ValueSet;
 use crate::solve::{shooting, within_step_budget, Ode, Work};
 use exact::{Event, Mode, State, Switch};
@@ -620,7 +622,7 @@ impl Scene for Oscillator {
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
-        super::check_saved("DryFrictionOscillator", state, 10)?;
+        super::check_saved(TABLE.model_identifier, state, 10)?;
         match Mode::from_code(state[3]) {
             Some(mode) => {
                 self.state = State {

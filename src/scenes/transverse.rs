@@ -16,6 +16,8 @@
 
 mod axial;
 mod exponential;
+#[cfg(feature = "tools")]
+pub mod stability;
 mod two_phase;
 
 use super::period_mean::PeriodMean;

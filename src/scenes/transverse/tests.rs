@@ -424,9 +424,9 @@ impl Switching for RateAtStart<'_> {
 }
 
 /// Oracle: dopri5 at rtol 1e-12. Under the total law the slip rate frozen at each step's middle
-/// gives FFx_mean over the 150th period of the benchmark case with 35 to 47 % less error than
-/// frozen at the step's start, for the same right-hand sides within 1 %, over the tolerances
-/// the comparison with scipy runs at.
+/// gives FFx_mean over the 150th period of the benchmark case with less error than frozen at the
+/// step's start, for about the same right-hand sides, over the tolerances the comparison with
+/// scipy runs at (the measured gain: docs/performance.md, "Measurements behind the code").
 #[test]
 fn the_total_laws_slip_rate_taken_at_the_steps_middle_gains_accuracy() {
     let v = benchmark_case("dopri5", "total", 1.0, 1e-12);
