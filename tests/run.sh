@@ -65,7 +65,7 @@ linted cargo test --profile testing
 BIN=target/testing/friction-fmu
 stage "fuzzing under valgrind memcheck (invalid reads and writes, use after free)"
 FUZZ_BIN=$(linted cargo test --profile testing --test fuzz_calls --no-run 2>&1 | grep -o 'target/testing/deps/fuzz_calls-[0-9a-f]*' | head -1)
-FUZZ_SEQUENCES=10000 valgrind --error-exitcode=9 --leak-check=no -q "$FUZZ_BIN" random_call_sequences
+FUZZ_SEQUENCES=5000 valgrind --error-exitcode=9 --leak-check=no -q "$FUZZ_BIN" random_call_sequences
 stage "packing the FMUs"
 $BIN build
 $BIN build scenes/*.toml --out fmu-out/scenes

@@ -7,7 +7,7 @@
 //!   saying so;
 //! - win64: this machine's toolchain with its `x86_64-pc-windows-gnu` standard library (`rustup
 //!   target add x86_64-pc-windows-gnu`), or else Debian's `rustc-web`, `cargo-web` and
-//!   `rust-web-src`, which build that standard library from source; `mingw-w64` links, with thin
+//!   `rust-web-src`, which build that standard library from source; `mingw-w64` links, with
 //!   link-time optimisation; without either, one line saying the FMUs carry linux64 only.
 //!
 //! On a machine that is not x86_64 Linux, this machine's platform alone, with its own cargo.
@@ -25,6 +25,10 @@ const DEBIAN_CARGO: &str = "/usr/bin/cargo";
 const DEBIAN_RUSTC: &str = "/usr/bin/rustc";
 const DEBIAN_STD_SOURCE: &str = "/usr/lib/rustlib/src/rust/library";
 const PACKAGE: &str = "friction-fmu-binary";
+/// mingw-w64's linker keeps unreferenced code in a DLL (every model's); link-time optimisation
+/// leaves out what the one model does not reach. Fat rather than thin: the dependencies are then
+/// compiled to bitcode alone, and the whole build takes less CPU (docs/platforms.md).
+const WINDOWS_LTO: &str = "fat";
 const PROFILE: &str = "fmu";
 
 /// How one platform's libraries are built.
@@ -194,7 +198,7 @@ fn build(toolchain: &Toolchain, root: &Path) -> Result<PathBuf, String> {
                 .args(["--target", WINDOWS_TARGET])
                 .env("CARGO_TARGET_X86_64_PC_WINDOWS_GNU_LINKER", MINGW_GCC)
                 // As for DebianWindows.
-                .env("CARGO_PROFILE_FMU_LTO", "thin");
+                .env("CARGO_PROFILE_FMU_LTO", WINDOWS_LTO);
             (
                 command,
                 root.join(format!("target/{WINDOWS_TARGET}/{PROFILE}/examples")),
@@ -213,9 +217,7 @@ fn build(toolchain: &Toolchain, root: &Path) -> Result<PathBuf, String> {
                 .env("RUSTC_BOOTSTRAP", "1")
                 .env("CARGO_TARGET_DIR", &target_dir)
                 .env("CARGO_TARGET_X86_64_PC_WINDOWS_GNU_LINKER", MINGW_GCC)
-                // mingw-w64's linker keeps unreferenced code in a DLL (every model's); thin
-                // link-time optimisation leaves out what the one model does not reach.
-                .env("CARGO_PROFILE_FMU_LTO", "thin")
+                .env("CARGO_PROFILE_FMU_LTO", WINDOWS_LTO)
                 .env_remove("RUSTUP_TOOLCHAIN")
                 .env_remove("RUSTC_WRAPPER")
                 .env_remove("CARGO");

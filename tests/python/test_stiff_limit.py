@@ -56,6 +56,8 @@ def steady_mean(slip_law, vd, va, kt):
         MODEL,
         start_values={
             "slip_law": enum_value(MODEL, "slip_law", slip_law),
+            # the stiff contact is radau5's: dopri5 would warn of it and take far more steps
+            "solver": enum_value(MODEL, "solver", "radau5"),
             "initial": enum_value(MODEL, "initial", "sliding"),
             "kt": kt,
             "hd": 2.0 * math.sqrt(M * KD),  # critically damped drive
