@@ -41,14 +41,7 @@ pub enum Call {
 }
 
 /// Every phase: the instance's own housekeeping and its FMU states are allowed in any.
-const ANY: &[Phase] = &[
-    Instantiated,
-    InitializationMode,
-    StepComplete,
-    StepFailed,
-    Terminated,
-    Error,
-];
+const ANY: &[Phase] = &Phase::ALL;
 /// Where values can be read (the standard also allows it after an error, for debugging).
 const READABLE: &[Phase] = &[
     InitializationMode,

@@ -27,6 +27,16 @@ pub enum Phase {
 }
 
 impl Phase {
+    /// Every phase, in the order of their codes.
+    pub const ALL: [Phase; 6] = [
+        Phase::Instantiated,
+        Phase::InitializationMode,
+        Phase::StepComplete,
+        Phase::StepFailed,
+        Phase::Terminated,
+        Phase::Error,
+    ];
+
     pub fn name(self) -> &'static str {
         match self {
             Phase::Instantiated => "Instantiated",
@@ -43,16 +53,7 @@ impl Phase {
     }
 
     pub fn from_code(code: f64) -> Option<Phase> {
-        [
-            Phase::Instantiated,
-            Phase::InitializationMode,
-            Phase::StepComplete,
-            Phase::StepFailed,
-            Phase::Terminated,
-            Phase::Error,
-        ]
-        .into_iter()
-        .find(|p| p.code() == code)
+        Phase::ALL.into_iter().find(|p| p.code() == code)
     }
 }
 
