@@ -22,7 +22,7 @@
 
 use friction_fmu::cpu_clock::time_cpu;
 use friction_fmu::fmi2::ffi::Status;
-use friction_fmu::importer::Instance;
+use friction_fmu::importer::ImportedInstance;
 use friction_fmu::interface::values::ValueSet;
 use friction_fmu::interface::variable::Causality;
 use friction_fmu::scenes::{Model, Scope, MODELS};
@@ -51,7 +51,7 @@ fn median(mut xs: Vec<f64>) -> f64 {
 /// after each when `read` is set.
 fn through_fmi(model: &Model, step: f64, calls: u64, read: bool) -> Result<f64, String> {
     let id = model.table.model_identifier;
-    let mut fmu = Instance::new(id, "overhead").map_err(|log| format!("{id}: {log:?}"))?;
+    let mut fmu = ImportedInstance::new(id, "overhead").map_err(|log| format!("{id}: {log:?}"))?;
     if fmu.initialize() != Status::Ok {
         return Err(format!("{id}: initialisation: {}", fmu.last_message()));
     }

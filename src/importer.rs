@@ -2,14 +2,16 @@
 //! the way a co-simulation master calls them through `dlsym`, without loading a shared library.
 //!
 //! It exists so that tests, fuzzers and benchmarks can drive an FMU from safe code (its own
-//! `unsafe` is the calls into `src/fmi2/`, which validates every pointer). Each [`Instance`] owns one FMU instance and the log of
-//! the messages that instance sent to its logger; `&mut self` on every call gives the FMI rule
-//! "one instance is never called from two threads at once" for free.
+//! `unsafe` is the calls into `src/fmi2/`, which validates every pointer). Each
+//! [`ImportedInstance`] owns one FMU instance, as a master sees it, and the log of the messages
+//! that instance sent to its logger; `&mut self` on every call gives the FMI rule "one instance
+//! is never called from two threads at once" for free.
 //!
 //! Besides the well-behaved calls, the driver offers the ill-behaved ones an importer can make:
 //! arbitrary value references, FMU states as bare addresses ([`State::from_address`]), buffers
-//! too small, NULL arrays ([`Instance::call_with_null`]), calls after `fmi2FreeInstance`, a second
-//! `fmi2FreeInstance` ([`Instance::free_twice`]), calls on NULL ([`calls_on_null_component`]).
+//! too small, NULL arrays ([`ImportedInstance::call_with_null`]), calls after
+//! `fmi2FreeInstance`, a second `fmi2FreeInstance` ([`ImportedInstance::free_twice`]), calls on
+//! NULL ([`calls_on_null_component`]).
 //! They stay memory-safe because the FMU validates every pointer against the lists of instances
 //! and states it handed out; that validation is what such calls test.
 //!
@@ -34,8 +36,8 @@ pub struct Message {
     pub text: String,
 }
 
-/// Where an instance's logger writes: one per [`Instance`], boxed so its address (passed to the
-/// FMU as the component environment) stays put while the instance lives.
+/// Where an instance's logger writes: one per [`ImportedInstance`], boxed so its address (passed
+/// to the FMU as the component environment) stays put while the instance lives.
 #[derive(Default)]
 struct Sink {
     messages: Mutex<Vec<Message>>,
@@ -86,8 +88,8 @@ extern "C" fn record(
     } else {
         format_text
     };
-    // SAFETY: the environment is the address of the `Sink` of the `Instance` that owns this FMU
-    // instance; the sink outlives the FMU instance (freed in `Drop` before the sink).
+    // SAFETY: the environment is the address of the `Sink` of the `ImportedInstance` that owns
+    // this FMU instance; the sink outlives the FMU instance (freed in `Drop` before the sink).
     let sink = unsafe { &*(environment as *const Sink) };
     sink.lock().push(Message {
         status,
@@ -110,8 +112,9 @@ fn logger() -> CallbackLogger {
     unsafe { std::mem::transmute::<Fixed, CallbackLogger>(record as Fixed) }
 }
 
-/// Serialises instantiation with [`Instance::free_twice`], so that between the two frees no other
-/// driver instance can be allocated at the address just freed (the second free would end it).
+/// Serialises instantiation with [`ImportedInstance::free_twice`], so that between the two frees
+/// no other driver instance can be allocated at the address just freed (the second free would
+/// end it).
 static ALLOCATION: Mutex<()> = Mutex::new(());
 
 fn allocation() -> MutexGuard<'static, ()> {
@@ -141,7 +144,7 @@ impl State {
     }
 }
 
-/// Which argument [`Instance::call_with_null`] passes as NULL, and to which function.
+/// Which argument [`ImportedInstance::call_with_null`] passes as NULL, and to which function.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum NullArgument {
     /// fmi2GetReal with one value reference and a NULL value array.
@@ -213,7 +216,7 @@ fn c_pointer(text: &Option<CString>) -> *const c_char {
 /// One FMU instance of this crate, called in-process, with its log.
 ///
 /// Dropping it frees the FMU instance (and, through the FMU, every state it still holds).
-pub struct Instance {
+pub struct ImportedInstance {
     /// The address fmi2Instantiate returned; after a free, the address of `sink` instead, which
     /// can never be an instance's, so later calls exercise the FMU's "not an instance" refusal
     /// without the risk of reaching an instance allocated since at the freed address.
@@ -225,14 +228,17 @@ pub struct Instance {
 // SAFETY: FMI 2.0 lets an instance be called from any thread as long as calls on it do not
 // overlap; `&mut self` on every call guarantees that, and the FMU instance holds no thread-bound
 // data (scenes are `Send`, the logger environment is this instance's own `Sink`).
-unsafe impl Send for Instance {}
+unsafe impl Send for ImportedInstance {}
 
-impl Instance {
+impl ImportedInstance {
     /// Instantiates `model_identifier` as a co-simulation slave named `instance_name`.
     /// The error is the log of the refusal (empty if the FMU could not log at all).
-    pub fn new(model_identifier: &str, instance_name: &str) -> Result<Instance, Vec<Message>> {
+    pub fn new(
+        model_identifier: &str,
+        instance_name: &str,
+    ) -> Result<ImportedInstance, Vec<Message>> {
         match Instantiation::new(model_identifier, instance_name) {
-            Some(arguments) => Instance::instantiate(&arguments),
+            Some(arguments) => ImportedInstance::instantiate(&arguments),
             None => Err(vec![Message {
                 status: Status::Error as i32,
                 category: "driver".into(),
@@ -242,7 +248,7 @@ impl Instance {
     }
 
     /// fmi2Instantiate with the given arguments.
-    pub fn instantiate(arguments: &Instantiation) -> Result<Instance, Vec<Message>> {
+    pub fn instantiate(arguments: &Instantiation) -> Result<ImportedInstance, Vec<Message>> {
         let sink = Box::<Sink>::default();
         let callbacks = CallbackFunctions {
             logger: Some(logger()),
@@ -275,7 +281,7 @@ impl Instance {
             let log = std::mem::take(&mut *sink.lock());
             return Err(log);
         }
-        Ok(Instance {
+        Ok(ImportedInstance {
             component: component as usize,
             freed: false,
             sink,
@@ -426,14 +432,14 @@ impl Instance {
         unsafe { fmi2SetReal(self.c(), vrs.as_ptr(), vrs.len(), values.as_ptr()) }
     }
 
-    /// fmi2SetInteger (also sets Enumerations). Panics as [`Instance::set_real`].
+    /// fmi2SetInteger (also sets Enumerations). Panics as [`ImportedInstance::set_real`].
     pub fn set_integer(&mut self, vrs: &[u32], values: &[i32]) -> Status {
         assert_eq!(vrs.len(), values.len(), "one value per value reference");
         // SAFETY: both arrays hold `vrs.len()` elements.
         unsafe { fmi2SetInteger(self.c(), vrs.as_ptr(), vrs.len(), values.as_ptr()) }
     }
 
-    /// fmi2SetBoolean. Panics as [`Instance::set_real`].
+    /// fmi2SetBoolean. Panics as [`ImportedInstance::set_real`].
     pub fn set_boolean(&mut self, vrs: &[u32], values: &[bool]) -> Status {
         assert_eq!(vrs.len(), values.len(), "one value per value reference");
         let values: Vec<ffi::Boolean> = values.iter().map(|&b| c_int::from(b)).collect();
@@ -441,7 +447,7 @@ impl Instance {
         unsafe { fmi2SetBoolean(self.c(), vrs.as_ptr(), vrs.len(), values.as_ptr()) }
     }
 
-    /// fmi2SetString. Panics as [`Instance::set_real`].
+    /// fmi2SetString. Panics as [`ImportedInstance::set_real`].
     pub fn set_string(&mut self, vrs: &[u32], values: &[&str]) -> Status {
         assert_eq!(vrs.len(), values.len(), "one value per value reference");
         let texts: Vec<CString> = values
@@ -745,7 +751,7 @@ impl Instance {
     }
 }
 
-impl Drop for Instance {
+impl Drop for ImportedInstance {
     fn drop(&mut self) {
         if !self.freed {
             self.free();

@@ -23,8 +23,8 @@
 
 use friction_fmu::fmi2::ffi::Status;
 use friction_fmu::importer::{
-    calls_on_null_component, free_null_instance, types_platform, version, Instance, Instantiation,
-    NullArgument, State,
+    calls_on_null_component, free_null_instance, types_platform, version, ImportedInstance,
+    Instantiation, NullArgument, State,
 };
 use friction_fmu::interface::values::check_value;
 use friction_fmu::interface::variable::{Causality, Kind, ModelTable, Variable};
@@ -429,7 +429,7 @@ fn null_argument(rng: &mut Rng, state: State) -> (NullArgument, &'static str) {
 }
 
 struct Slot {
-    instance: Instance,
+    instance: ImportedInstance,
     table: &'static ModelTable,
     /// The time the fuzzer believes the instance is at (its own bookkeeping, not the FMU's).
     time: f64,
@@ -452,7 +452,7 @@ fn instantiate(rng: &mut Rng, table: &'static ModelTable, name: &str) -> Result<
             || arguments.fmu_type != 1
             || arguments.guid.as_deref() != friction_fmu::fmi2::guid(table.model_identifier)
             || arguments.resource_location.is_some();
-        return match Instance::instantiate(&arguments) {
+        return match ImportedInstance::instantiate(&arguments) {
             Ok(_) if expect_refusal => Err(format!("instantiated with {arguments:?}")),
             Ok(instance) => Ok(Slot {
                 instance,
@@ -465,7 +465,7 @@ fn instantiate(rng: &mut Rng, table: &'static ModelTable, name: &str) -> Result<
             Err(log) => Err(format!("refused {arguments:?} without a message: {log:?}")),
         };
     }
-    Instance::instantiate(&arguments)
+    ImportedInstance::instantiate(&arguments)
         .map(|instance| Slot {
             instance,
             table,
@@ -1036,8 +1036,9 @@ fn forge(bytes: &[u8], index: usize, value: f64) -> Vec<u8> {
     bytes
 }
 
-fn initialized(table: &ModelTable) -> Instance {
-    let mut instance = Instance::new(table.model_identifier, "regression").expect("instantiate");
+fn initialized(table: &ModelTable) -> ImportedInstance {
+    let mut instance =
+        ImportedInstance::new(table.model_identifier, "regression").expect("instantiate");
     assert_eq!(instance.initialize(), Status::Ok);
     instance
 }
@@ -1047,7 +1048,7 @@ fn initialized(table: &ModelTable) -> Instance {
 #[test]
 fn regression_get_real_refuses_outputs_that_are_not_finite() {
     for table in MODELS {
-        let mut instance = Instance::new(table.model_identifier, "regression").unwrap();
+        let mut instance = ImportedInstance::new(table.model_identifier, "regression").unwrap();
         assert_eq!(instance.setup_experiment(None, f64::MAX, None), Status::Ok);
         assert_eq!(instance.enter_initialization_mode(), Status::Ok);
         let (status, values) = instance.get_real(&outputs(table));

@@ -13,7 +13,7 @@
 ))]
 
 use friction_fmu::fmi2::ffi::Status;
-use friction_fmu::importer::{Instance, Instantiation};
+use friction_fmu::importer::{ImportedInstance, Instantiation};
 use friction_fmu::interface::variable::{Causality, Kind, ModelTable, Variable};
 use friction_fmu::interface::{drive, transverse};
 use friction_fmu::scene_file;
@@ -46,12 +46,17 @@ fn real_outputs(variables: &[&Variable]) -> Vec<u32> {
 
 /// Runs `master` on an initialised instance: 10 rounds uncounted, then ROUNDS counted. Panics
 /// if a call fails, an allocation happens while counting, or the outputs end non-finite.
-fn assert_rounds_do_not_allocate(name: &str, fmu: &mut Instance, outputs: &[u32], master: &Master) {
+fn assert_rounds_do_not_allocate(
+    name: &str,
+    fmu: &mut ImportedInstance,
+    outputs: &[u32],
+    master: &Master,
+) {
     let (inputs, values): (Vec<u32>, Vec<f64>) = master.inputs.iter().copied().unzip();
     let orders = vec![1; inputs.len()];
     let mut out = vec![0.0; outputs.len()];
     let mut t = 0.0;
-    let mut round = |fmu: &mut Instance, k: usize, t: &mut f64| {
+    let mut round = |fmu: &mut ImportedInstance, k: usize, t: &mut f64| {
         let h = master.steps[k % master.steps.len()];
         let set = fmu.set_real(&inputs, &values);
         let derivatives = match &master.derivatives {
@@ -95,8 +100,8 @@ fn assert_rounds_do_not_allocate(name: &str, fmu: &mut Instance, outputs: &[u32]
 }
 
 /// An initialised instance of a full model with the given enumerations set.
-fn full_model(table: &ModelTable, name: &str, enums: &[(u32, i32)]) -> Instance {
-    let mut fmu = Instance::new(table.model_identifier, name)
+fn full_model(table: &ModelTable, name: &str, enums: &[(u32, i32)]) -> ImportedInstance {
+    let mut fmu = ImportedInstance::new(table.model_identifier, name)
         .unwrap_or_else(|log| panic!("{name}: instantiate: {log:?}"));
     for &(vr, value) in enums {
         assert_eq!(fmu.set_integer(&[vr], &[value]), Status::Ok, "{name}");
@@ -228,7 +233,7 @@ fn every_scene_step_does_not_allocate() {
             .expect("the scene's model is in this binary");
         arguments.guid = Some(guid);
         arguments.resource_location = Some(format!("file://{}", resources.display()));
-        let mut fmu = Instance::instantiate(&arguments)
+        let mut fmu = ImportedInstance::instantiate(&arguments)
             .unwrap_or_else(|log| panic!("{}: instantiate: {log:?}", scene.name));
         assert_eq!(
             fmu.initialize(),

@@ -14,7 +14,7 @@
 ))]
 
 use friction_fmu::fmi2::ffi::Status;
-use friction_fmu::importer::Instance;
+use friction_fmu::importer::ImportedInstance;
 use friction_fmu::report::stability::{self, Outcome, Value};
 use friction_fmu::scenes::model;
 
@@ -66,7 +66,7 @@ fn final_output(
     output: &str,
 ) -> f64 {
     let table = model(model_identifier).unwrap().table;
-    let mut fmu = Instance::new(model_identifier, "convergence").unwrap();
+    let mut fmu = ImportedInstance::new(model_identifier, "convergence").unwrap();
     for &(name, value) in params {
         let var = table.by_name(name).unwrap();
         let vr = [var.value_reference];
@@ -278,7 +278,7 @@ fn a_clock_too_coarse_for_the_tolerance_is_said_once() {
     let table = model("LongitudinalFriction").unwrap().table;
     let step = table.default_experiment.step_size;
     for (start, expected) in [(0.0, Status::Ok), (1e5, Status::Warning)] {
-        let mut fmu = Instance::new("LongitudinalFriction", "clock").unwrap();
+        let mut fmu = ImportedInstance::new("LongitudinalFriction", "clock").unwrap();
         assert_eq!(fmu.setup_experiment(None, start, None), Status::Ok);
         assert_eq!(fmu.enter_initialization_mode(), Status::Ok);
         assert_eq!(fmu.exit_initialization_mode(), Status::Ok);

@@ -11,7 +11,7 @@
 ))]
 
 use friction_fmu::fmi2::ffi::Status;
-use friction_fmu::importer::Instance;
+use friction_fmu::importer::ImportedInstance;
 use friction_fmu::interface::variable::{Causality, Kind, ModelTable};
 use friction_fmu::interface::{drive, longitudinal, oscillator, transverse, MODELS};
 use std::sync::Barrier;
@@ -44,8 +44,8 @@ fn outputs(table: &ModelTable) -> Vec<u32> {
 }
 
 /// An initialised instance of `table`'s model with its varied parameter set for `index`.
-fn start(table: &ModelTable, index: usize) -> Instance {
-    let mut instance = Instance::new(table.model_identifier, &format!("thread{index}"))
+fn start(table: &ModelTable, index: usize) -> ImportedInstance {
+    let mut instance = ImportedInstance::new(table.model_identifier, &format!("thread{index}"))
         .unwrap_or_else(|log| panic!("{}: instantiate: {log:?}", table.model_identifier));
     let (vr, value) = varied_parameter(table, index);
     assert_eq!(instance.set_real(&[vr], &[value]), Status::Ok);
@@ -62,7 +62,7 @@ fn start(table: &ModelTable, index: usize) -> Instance {
 /// concurrent run). Returns the bits of every output after every step.
 fn run(
     table: &ModelTable,
-    instance: &mut Instance,
+    instance: &mut ImportedInstance,
     mut between_steps: impl FnMut(),
 ) -> Vec<Vec<u64>> {
     let vrs = outputs(table);

@@ -2,7 +2,7 @@
 
 use super::{Case, Value};
 use crate::fmi2::ffi::Status;
-use crate::importer::Instance;
+use crate::importer::ImportedInstance;
 use crate::interface::variable::{Causality, Kind, ModelTable};
 use std::time::Instant;
 
@@ -75,7 +75,12 @@ impl Row {
     }
 }
 
-fn set(fmu: &mut Instance, table: &ModelTable, name: &str, value: Value) -> Result<(), String> {
+fn set(
+    fmu: &mut ImportedInstance,
+    table: &ModelTable,
+    name: &str,
+    value: Value,
+) -> Result<(), String> {
     let var = table
         .by_name(name)
         .ok_or_else(|| format!("no parameter {name}"))?;
@@ -136,7 +141,7 @@ pub fn run(case: &Case) -> Row {
     };
     let table = model.table;
     let name = format!("{}-{}-{}", case.model, case.solver, case.extreme);
-    let mut fmu = match Instance::new(table.model_identifier, &name) {
+    let mut fmu = match ImportedInstance::new(table.model_identifier, &name) {
         Ok(fmu) => fmu,
         Err(log) => {
             row.outcome = Outcome::Refused;
