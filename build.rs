@@ -1,21 +1,42 @@
-//! Writes, into OUT_DIR only, every model's modelDescription.xml (from `src/interface`) and the
+//! Writes, into OUT_DIR only, every model's modelDescription.xml (from its variable table,
+//! `src/models/<model>/table.rs`) and the
 //! GUIDs (a hash of each XML) that `fmi2Instantiate` checks, so the binary and its XML can never
 //! drift apart. The XML comes from `src/model_description`, the writer the library uses for
-//! scene files. `friction-fmu build` copies the XML to `modelDescription/`, where a test checks
+//! variants. `friction-fmu build` copies the XML to `modelDescription/`, where a test checks
 //! that the committed copy is current.
 
 #[allow(dead_code)]
-#[path = "src/interface/mod.rs"]
-mod interface;
+#[path = "src/variables/mod.rs"]
+mod variables;
+
+// The tables, as `src/models/mod.rs` registers them (a test there holds the two lists to one).
+#[allow(dead_code)]
+#[path = "src/models/drive/table.rs"]
+mod drive;
+#[allow(dead_code)]
+#[path = "src/models/longitudinal/table.rs"]
+mod longitudinal;
+#[allow(dead_code)]
+#[path = "src/models/oscillator/table.rs"]
+mod oscillator;
+#[allow(dead_code)]
+#[path = "src/models/transverse/table.rs"]
+mod transverse;
+const TABLES: &[&variables::variable::ModelTable] = &[
+    &longitudinal::TABLE,
+    &transverse::TABLE,
+    &oscillator::TABLE,
+    &drive::TABLE,
+];
 
 #[allow(dead_code)]
 #[path = "src/model_description/mod.rs"]
 mod model_description;
 
-use interface::variable::Variable;
-use model_description::Interface;
+use model_description::Description;
 use std::fmt::Write as _;
 use std::path::Path;
+use variables::variable::Variable;
 
 fn write_if_changed(path: &Path, text: &str) {
     if std::fs::read_to_string(path).ok().as_deref() != Some(text) {
@@ -25,15 +46,16 @@ fn write_if_changed(path: &Path, text: &str) {
 }
 
 fn main() {
-    println!("cargo:rerun-if-changed=src/interface");
+    println!("cargo:rerun-if-changed=src/variables");
+    println!("cargo:rerun-if-changed=src/models");
     println!("cargo:rerun-if-changed=src/model_description");
     println!("cargo:rerun-if-changed=build.rs");
     let out_dir = std::env::var("OUT_DIR").expect("cargo sets OUT_DIR");
     let mut guids = String::from("/// GUID of each model: a hash of its modelDescription.xml.\npub const GUIDS: &[(&str, &str)] = &[\n");
     let mut xmls = String::from("/// Each model's modelDescription.xml, as packed into its FMU.\npub const XMLS: &[(&str, &str)] = &[\n");
-    for table in interface::MODELS {
+    for table in TABLES {
         let variables: Vec<&Variable> = table.variables.iter().collect();
-        let (guid, xml) = Interface::full(table, &variables).write();
+        let (guid, xml) = Description::full(table, &variables).write();
         let _ = writeln!(guids, "    ({:?}, {:?}),", table.model_identifier, guid);
         let _ = writeln!(xmls, "    ({:?}, {:?}),", table.model_identifier, xml);
     }

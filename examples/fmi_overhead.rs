@@ -4,8 +4,8 @@
 //!
 //! - (a) through the exported fmi2DoStep, in-process (src/importer.rs), outputs not read;
 //! - (b) the same, then fmi2GetReal of every output after each step;
-//! - (c) by calling the scene directly with the same steps;
-//! - (d) by calling the scene once per vibration (forcing) period over the same interval (once,
+//! - (c) by calling the simulation directly with the same steps;
+//! - (d) by calling the simulation once per vibration (forcing) period over the same interval (once,
 //!   for a model without one or an interval shorter than it).
 //!
 //! (a) - (c) is the FMI layer per call; (c) - (d) what restarting the integrator at every
@@ -23,9 +23,9 @@
 use friction_fmu::cpu_clock::time_cpu;
 use friction_fmu::fmi2::ffi::Status;
 use friction_fmu::importer::ImportedInstance;
-use friction_fmu::interface::values::ValueSet;
-use friction_fmu::interface::variable::Causality;
-use friction_fmu::scenes::{Model, Scope, MODELS};
+use friction_fmu::models::{Model, Scope, MODELS};
+use friction_fmu::variables::values::ValueSet;
+use friction_fmu::variables::variable::Causality;
 
 const STEPS: [f64; 2] = [1e-6, 1e-5];
 const RUNS: usize = 11;
@@ -78,17 +78,17 @@ fn through_fmi(model: &Model, step: f64, calls: u64, read: bool) -> Result<f64, 
     result.map(|()| seconds)
 }
 
-/// CPU seconds of the scene advanced over `calls * step` in calls of `h` (the last one ending
+/// CPU seconds of the simulation advanced over `calls * step` in calls of `h` (the last one ending
 /// on the interval's end).
 fn direct(model: &Model, step: f64, calls: u64, h: f64) -> Result<f64, String> {
     let values = ValueSet::start(model.table);
-    let mut scene = (model.build)(&values, 0.0, &Scope::full())?;
+    let mut sim = (model.build)(&values, 0.0, &Scope::full())?;
     let end = calls as f64 * step;
     let n = (end / h).round().max(1.0) as u64;
     let (result, seconds) = time_cpu(|| {
         for k in 0..n {
             let target = if k + 1 == n { end } else { (k + 1) as f64 * h };
-            scene.do_step(target - scene.time(), &values)?;
+            sim.do_step(target - sim.time(), &values)?;
         }
         Ok::<(), String>(())
     });
@@ -108,16 +108,16 @@ fn measure(model: &Model, step: f64, calls: u64) -> Result<(), String> {
     let per_call = |t: &[f64]| median(t.to_vec()) / calls as f64 * 1e9;
     let difference =
         |a: &[f64], b: &[f64]| per_call(&a.iter().zip(b).map(|(a, b)| a - b).collect::<Vec<_>>());
-    let [fmi, read, scene, whole] = &times;
+    let [fmi, read, sim, whole] = &times;
     println!(
         "| {} | {step:e} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} |",
         model.table.model_identifier,
         per_call(fmi),
         per_call(read),
-        per_call(scene),
+        per_call(sim),
         per_call(whole),
-        difference(fmi, scene),
-        difference(scene, whole),
+        difference(fmi, sim),
+        difference(sim, whole),
     );
     Ok(())
 }
@@ -153,7 +153,7 @@ fn main() -> std::process::ExitCode {
     } else {
         let calls = args.first().and_then(|s| s.parse().ok()).unwrap_or(5000);
         println!("Each model at its defaults, {calls} communication steps of h from t = 0; CPU time of the thread per call (ns), median of {RUNS} runs.\n");
-        println!("| model | h (s) | (a) fmi2DoStep | (b) fmi2DoStep + fmi2GetReal of every output | (c) scene, same steps | (d) scene, one call a period | FMI layer (a) - (c) | integrator restart (c) - (d) |");
+        println!("| model | h (s) | (a) fmi2DoStep | (b) fmi2DoStep + fmi2GetReal of every output | (c) simulation, same steps | (d) simulation, one call a period | FMI layer (a) - (c) | integrator restart (c) - (d) |");
         println!("|---|---|---|---|---|---|---|---|");
         STEPS.iter().try_for_each(|&step| {
             MODELS

@@ -1,4 +1,4 @@
-//! In-process timing of scene T for benches/transverse.py: runs the scene (no FMI layer) for each
+//! In-process timing of scene T for benches/transverse.py: runs the simulation (no FMI layer) for each
 //! solver setting given on the command line and prints one CSV line per run.
 //!
 //!   cargo run --release --example transverse_bench -- SLIP_LAW KT_FACTOR T_END COMM_STEP \
@@ -9,10 +9,10 @@
 //! The clock is the CPU time of the running thread (`cpu_clock`).
 
 use friction_fmu::cpu_clock::time_cpu;
-use friction_fmu::interface::transverse::{vr, INITIAL, SLIP_LAW, SOLVER, TABLE};
-use friction_fmu::interface::values::ValueSet;
-use friction_fmu::scenes::transverse::Transverse;
-use friction_fmu::scenes::Scene;
+use friction_fmu::models::transverse::table::{vr, INITIAL, SLIP_LAW, SOLVER, TABLE};
+use friction_fmu::models::transverse::Transverse;
+use friction_fmu::models::Simulation;
+use friction_fmu::variables::values::ValueSet;
 use std::process::ExitCode;
 
 fn run(args: &[String]) -> Result<(), String> {
@@ -30,7 +30,7 @@ fn run(args: &[String]) -> Result<(), String> {
             .ok_or(format!("{spec}: expected SOLVER:KNOB"))?;
         let knob = parse(knob)?;
         let mut v = ValueSet::start(&TABLE);
-        let item = |e: &friction_fmu::interface::variable::EnumType, name: &str| {
+        let item = |e: &friction_fmu::variables::variable::EnumType, name: &str| {
             e.value_of(name)
                 .map(f64::from)
                 .ok_or(format!("no item {name}"))
@@ -47,21 +47,21 @@ fn run(args: &[String]) -> Result<(), String> {
         } else {
             v.set(vr::TOLERANCE, knob);
         }
-        let mut scene = Transverse::new(&v, 0.0)?;
+        let mut sim = Transverse::new(&v, 0.0)?;
         let steps = (t_end / comm).round() as u64;
         let (result, seconds) = time_cpu(|| -> Result<(), String> {
             for i in 0..steps {
                 // The communication point from its index, as a master computes it.
-                let h = (i + 1) as f64 * comm - scene.time();
-                scene.do_step(h, &v)?;
+                let h = (i + 1) as f64 * comm - sim.time();
+                sim.do_step(h, &v)?;
             }
             Ok(())
         });
         result?;
-        let w = scene.work;
+        let w = sim.work;
         println!(
             "{slip},{kt_factor},{solver},{knob:e},{:.15e},{seconds:.6},{},{},{}",
-            scene.mean_ffx(),
+            sim.mean_ffx(),
             w.rhs_evaluations,
             w.steps,
             w.rejected

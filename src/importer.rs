@@ -227,7 +227,7 @@ pub struct ImportedInstance {
 
 // SAFETY: FMI 2.0 lets an instance be called from any thread as long as calls on it do not
 // overlap; `&mut self` on every call guarantees that, and the FMU instance holds no thread-bound
-// data (scenes are `Send`, the logger environment is this instance's own `Sink`).
+// data (simulations are `Send`, the logger environment is this instance's own `Sink`).
 unsafe impl Send for ImportedInstance {}
 
 impl ImportedInstance {

@@ -1,7 +1,7 @@
 //! friction-fmu: friction-vibration contact models as FMI 2.0 co-simulation FMUs.
 //!
-//! Data flows one way: parameters ([`interface`]) -> friction law ([`friction`]) + scene
-//! equations ([`scenes`]) -> outputs -> the FMI getters ([`fmi2`], the only `unsafe` code).
+//! Data flows one way: parameters ([`variables`]) -> friction law ([`friction`]) + model
+//! equations ([`models`]) -> outputs -> the FMI getters ([`fmi2`], the only `unsafe` code).
 
 // Only the FMI boundary (src/fmi2), the in-process importer that calls it and the CPU clock use
 // `unsafe`: each module that does is allowed it by name.
@@ -15,12 +15,12 @@ pub mod friction;
 #[cfg(feature = "tools")]
 #[allow(unsafe_code)]
 pub mod importer;
-pub mod interface;
 pub mod model_description;
+pub mod models;
 #[cfg(feature = "tools")]
 pub mod package;
 #[cfg(feature = "tools")]
 pub mod report;
-pub mod scene_file;
-pub mod scenes;
 pub mod solve;
+pub mod variables;
+pub mod variant;

@@ -9,8 +9,8 @@ use std::path::PathBuf;
 use fmi::fmi2::import::Fmi2Import;
 use fmi::fmi2::instance::{CoSimulation, Common};
 use fmi::traits::FmiImport;
-use friction_fmu::interface::longitudinal::TABLE;
-use friction_fmu::interface::variable::Kind;
+use friction_fmu::models::longitudinal::table::TABLE;
+use friction_fmu::variables::variable::Kind;
 
 const MODEL: &str = "LongitudinalFriction";
 /// Vibration frequency (Hz); one vibration period is T = 1/F.
@@ -53,7 +53,7 @@ fn pack(tag: &str) -> (PathBuf, PathBuf) {
     let library = friction_fmu::package::Library {
         platform: "linux64",
         model: MODEL,
-        scene: false,
+        variant: false,
         path: cdylib(),
     };
     let fmu = friction_fmu::package::pack(MODEL, &[library], &dir).expect("pack the FMU");

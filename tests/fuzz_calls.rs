@@ -26,9 +26,9 @@ use friction_fmu::importer::{
     calls_on_null_component, free_null_instance, types_platform, version, ImportedInstance,
     Instantiation, NullArgument, State,
 };
-use friction_fmu::interface::values::check_value;
-use friction_fmu::interface::variable::{Causality, Kind, ModelTable, Variable};
-use friction_fmu::interface::MODELS;
+use friction_fmu::models::MODELS;
+use friction_fmu::variables::values::check_value;
+use friction_fmu::variables::variable::{Causality, Kind, ModelTable, Variable};
 use std::io::Write as _;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
@@ -480,11 +480,11 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
     let mut blobs: Vec<Vec<u8>> = Vec::new();
     let blobs = &mut blobs;
     let mut rng = Rng(seed ^ index.wrapping_mul(0xD6E8_FEB8_6659_FD93));
-    let first = MODELS[rng.below(MODELS.len())];
+    let first = MODELS[rng.below(MODELS.len())].table;
     let second = if rng.chance(70) {
         first
     } else {
-        MODELS[rng.below(MODELS.len())]
+        MODELS[rng.below(MODELS.len())].table
     };
     let mut slots: Vec<Option<Slot>> = Vec::new();
     for (k, table) in [first, second].into_iter().enumerate() {
@@ -518,7 +518,7 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
             None => (rng.below(slots.len()), rng.pick(OPS)),
         };
         if let Op::Reinstantiate = op {
-            let table = MODELS[rng.below(MODELS.len())];
+            let table = MODELS[rng.below(MODELS.len())].table;
             // A slot whose instance was freed keeps its handle beside the new instance (which
             // may take the freed memory), so later calls test that the handle stays dead.
             let keep = slots[k].as_ref().is_some_and(|s| s.instance.is_freed()) && slots.len() < 4;
@@ -1047,7 +1047,7 @@ fn initialized(table: &ModelTable) -> ImportedInstance {
 /// TransverseFriction's FF are NaN, and fmi2GetReal returned them with fmi2OK.
 #[test]
 fn regression_get_real_refuses_outputs_that_are_not_finite() {
-    for table in MODELS {
+    for table in MODELS.iter().map(|m| m.table) {
         let mut instance = ImportedInstance::new(table.model_identifier, "regression").unwrap();
         assert_eq!(instance.setup_experiment(None, f64::MAX, None), Status::Ok);
         assert_eq!(instance.enter_initialization_mode(), Status::Ok);
@@ -1067,7 +1067,7 @@ fn regression_get_real_refuses_outputs_that_are_not_finite() {
 /// -inf were loaded, and the next fmi2DoStep of DryFrictionOscillator never returned.
 #[test]
 fn regression_serialized_state_with_bad_times_is_refused() {
-    for table in MODELS {
+    for table in MODELS.iter().map(|m| m.table) {
         let mut instance = initialized(table);
         let mut state = instance.get_fmu_state().unwrap();
         let bytes = instance.serialize_fmu_state(state).unwrap();
@@ -1094,10 +1094,10 @@ fn regression_serialized_state_with_bad_times_is_refused() {
 }
 
 /// Found with the re-checksummed corruption: a NaN parameter in serialized bytes reached the
-/// scene through fmi2SetFMUstate (and with it NaN outputs).
+/// simulation through fmi2SetFMUstate (and with it NaN outputs).
 #[test]
 fn regression_serialized_state_with_bad_values_is_refused() {
-    for table in MODELS {
+    for table in MODELS.iter().map(|m| m.table) {
         let mut instance = initialized(table);
         let mut state = instance.get_fmu_state().unwrap();
         let bytes = instance.serialize_fmu_state(state).unwrap();
@@ -1130,7 +1130,7 @@ fn regression_serialized_state_with_bad_values_is_refused() {
 /// and ended the next instance.
 #[test]
 fn regression_a_freed_handle_never_reaches_the_next_instance() {
-    let table = MODELS[MODELS.len() - 1];
+    let table = MODELS[MODELS.len() - 1].table;
     let step = table.default_experiment.step_size;
     let mut freed = initialized(table);
     freed.free_keeping_the_handle();

@@ -1,5 +1,5 @@
 //! A co-simulation step never allocates: fmi2SetReal (inputs), fmi2SetRealInputDerivatives,
-//! fmi2DoStep and fmi2GetReal (outputs), for every model and every solver, every scene file's
+//! fmi2DoStep and fmi2GetReal (outputs), for every model and every solver, every variant's
 //! trimmed FMU, inputs moving linearly over a step, and a master that changes its step size,
 //! driven through the exported fmi2* functions in-process (src/importer.rs) with a
 //! per-thread counting allocator around them.
@@ -14,10 +14,10 @@
 
 use friction_fmu::fmi2::ffi::Status;
 use friction_fmu::importer::{ImportedInstance, Instantiation};
-use friction_fmu::interface::variable::{Causality, Kind, ModelTable, Variable};
-use friction_fmu::interface::{drive, transverse};
-use friction_fmu::scene_file;
-use friction_fmu::scenes::MODELS;
+use friction_fmu::models::MODELS;
+use friction_fmu::models::{drive::table as drive, transverse::table as transverse};
+use friction_fmu::variables::variable::{Causality, Kind, ModelTable, Variable};
+use friction_fmu::variant;
 use std::path::Path;
 
 /// The communication step of the FMI-overhead measurement (examples/fmi_overhead.rs).
@@ -206,54 +206,62 @@ fn changing_step_sizes_do_not_allocate() {
     assert_rounds_do_not_allocate("DriveTrain-steps", &mut fmu, &outputs, &master);
 }
 
-/// Every scene file's trimmed FMU: the same library, instantiated with the scene's GUID and a
-/// resource location holding the file as resources/scene.toml, stepped at the scene's step.
+/// Every variant's trimmed FMU: the same library, instantiated with the variant's GUID and a
+/// resource location holding the file as resources/variant.toml, stepped at the variant's step.
 #[test]
-fn every_scene_step_does_not_allocate() {
-    let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
-    let root = std::env::temp_dir().join(format!("no_alloc_scenes_{}", std::process::id()));
-    let mut files: Vec<_> = std::fs::read_dir(&scenes)
+fn every_variant_step_does_not_allocate() {
+    let variants = Path::new(env!("CARGO_MANIFEST_DIR")).join("variants");
+    let root = std::env::temp_dir().join(format!("no_alloc_variants_{}", std::process::id()));
+    let mut files: Vec<_> = std::fs::read_dir(&variants)
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
         .collect();
     files.sort();
     for path in &files {
-        let scene = scene_file::read(path).unwrap();
-        let resources = root.join(&scene.name).join("resources");
+        let variant_file = variant::read(path).unwrap();
+        let resources = root.join(&variant_file.name).join("resources");
         std::fs::create_dir_all(&resources).unwrap();
-        let file = resources.join(scene_file::RESOURCE);
-        std::fs::write(&file, &scene.text).unwrap();
+        let file = resources.join(variant::RESOURCE);
+        std::fs::write(&file, &variant_file.text).unwrap();
         // The GUID fmi2Instantiate checks the file against, computed the way it does.
-        let guid = scene_file::registry::load(&file, friction_fmu::scenes::MODELS)
+        let guid = variant::registry::load(&file, friction_fmu::models::MODELS)
             .unwrap()
             .guid
             .clone();
-        let mut arguments = Instantiation::new(scene.model.table.model_identifier, &scene.name)
-            .expect("the scene's model is in this binary");
+        let mut arguments = Instantiation::new(
+            variant_file.model.table.model_identifier,
+            &variant_file.name,
+        )
+        .expect("the variant's model is in this binary");
         arguments.guid = Some(guid);
         arguments.resource_location = Some(format!("file://{}", resources.display()));
         let mut fmu = ImportedInstance::instantiate(&arguments)
-            .unwrap_or_else(|log| panic!("{}: instantiate: {log:?}", scene.name));
+            .unwrap_or_else(|log| panic!("{}: instantiate: {log:?}", variant_file.name));
         assert_eq!(
             fmu.initialize(),
             Status::Ok,
             "{}: {:?}",
-            scene.name,
+            variant_file.name,
             fmu.messages()
         );
-        let kept = scene.kept_variables();
+        let kept = variant_file.kept_variables();
         let master = Master {
             inputs: kept
                 .iter()
                 .filter(|v| v.causality == Causality::Input)
-                .map(|v| (v.value_reference, scene.values.real(v.value_reference)))
+                .map(|v| {
+                    (
+                        v.value_reference,
+                        variant_file.values.real(v.value_reference),
+                    )
+                })
                 .collect(),
             derivatives: None,
-            steps: &[scene.experiment.step],
+            steps: &[variant_file.experiment.step],
         };
-        assert_rounds_do_not_allocate(&scene.name, &mut fmu, &real_outputs(&kept), &master);
+        assert_rounds_do_not_allocate(&variant_file.name, &mut fmu, &real_outputs(&kept), &master);
     }
     std::fs::remove_dir_all(&root).unwrap();
-    assert!(files.len() >= 14, "only {} scene files", files.len());
+    assert!(files.len() >= 14, "only {} variants", files.len());
 }

@@ -68,7 +68,7 @@ FUZZ_BIN=$(linted cargo test --profile testing --test fuzz_calls --no-run 2>&1 |
 FUZZ_SEQUENCES=5000 valgrind --error-exitcode=9 --leak-check=no -q "$FUZZ_BIN" random_call_sequences
 stage "packing the FMUs"
 $BIN build
-$BIN build scenes/*.toml --out fmu-out/scenes
+$BIN build variants/*.toml --out fmu-out/variants
 stage "pytest (fmpy, libcosim, ecos, the C host natively and under wine)"
 # wine's prefix outside the source tree: cargo scans the package directory, and the prefix links
 # to /.

@@ -1,5 +1,5 @@
 //! The stability matrix : every solver of every scene at
-//! each extreme the scene has a parameter for (src/report/stability.rs lists them), run through
+//! each extreme the model has a parameter for (src/report/stability.rs lists them), run through
 //! the exported fmi2* functions, and convergence of each solver at a stiff setting.
 //!
 //! Oracles: the FMI contract (fmi2OK with finite outputs; fmi2Warning with those and a logged
@@ -15,8 +15,8 @@
 
 use friction_fmu::fmi2::ffi::Status;
 use friction_fmu::importer::ImportedInstance;
+use friction_fmu::models::model;
 use friction_fmu::report::stability::{self, Outcome, Value};
-use friction_fmu::scenes::model;
 
 #[test]
 fn every_solver_meets_every_extreme_soundly() {
@@ -26,7 +26,7 @@ fn every_solver_meets_every_extreme_soundly() {
     let unsound: Vec<_> = rows.iter().filter(|r| !r.sound()).collect();
     assert!(unsound.is_empty(), "unsound rows: {unsound:#?}");
     // Every solver item of every model is in the matrix, at the paper's setting at least.
-    for m in friction_fmu::scenes::MODELS {
+    for m in friction_fmu::models::MODELS {
         let id = m.table.model_identifier;
         for solver in stability::solvers(id) {
             let paper = rows
@@ -74,7 +74,7 @@ fn final_output(
             Value::Real(x) => fmu.set_real(&vr, &[x]),
             Value::Integer(n) => fmu.set_integer(&vr, &[n]),
             Value::Item(item) => {
-                let friction_fmu::interface::variable::Kind::Switch { type_name, .. } = var.kind
+                let friction_fmu::variables::variable::Kind::Switch { type_name, .. } = var.kind
                 else {
                     panic!("{name} is not an enumeration");
                 };

@@ -12,8 +12,11 @@
 
 use friction_fmu::fmi2::ffi::Status;
 use friction_fmu::importer::ImportedInstance;
-use friction_fmu::interface::variable::{Causality, Kind, ModelTable};
-use friction_fmu::interface::{drive, longitudinal, oscillator, transverse, MODELS};
+use friction_fmu::models::{
+    drive::table as drive, longitudinal::table as longitudinal, oscillator::table as oscillator,
+    transverse::table as transverse, MODELS,
+};
+use friction_fmu::variables::variable::{Causality, Kind, ModelTable};
 use std::sync::Barrier;
 
 const THREADS: usize = 4;
@@ -111,7 +114,7 @@ fn concurrent_instances_match_sequential_runs_bit_for_bit() {
     let mut sequential = Vec::new();
     for index in 0..THREADS {
         let mut per_model = Vec::new();
-        for table in MODELS {
+        for table in MODELS.iter().map(|m| m.table) {
             let mut instance = start(table, index);
             per_model.push(run(table, &mut instance, || {}));
         }
@@ -128,6 +131,7 @@ fn concurrent_instances_match_sequential_runs_bit_for_bit() {
                 scope.spawn(move || {
                     MODELS
                         .iter()
+                        .map(|m| m.table)
                         .map(|table| {
                             let mut instance = start(table, index);
                             run(table, &mut instance, || {
@@ -145,7 +149,7 @@ fn concurrent_instances_match_sequential_runs_bit_for_bit() {
     });
 
     for index in 0..THREADS {
-        for (m, table) in MODELS.iter().enumerate() {
+        for (m, table) in MODELS.iter().map(|m| m.table).enumerate() {
             assert_eq!(sequential[index][m].len(), STEPS);
             assert!(
                 concurrent[index][m] == sequential[index][m],
@@ -155,7 +159,7 @@ fn concurrent_instances_match_sequential_runs_bit_for_bit() {
         }
     }
     // The varied parameter must matter, or the comparison above could not tell instances apart.
-    for (m, table) in MODELS.iter().enumerate() {
+    for (m, table) in MODELS.iter().map(|m| m.table).enumerate() {
         assert_ne!(
             sequential[0][m], sequential[1][m],
             "{}: instances 0 and 1 gave equal outputs",

@@ -4,7 +4,7 @@ sweep's line plots and heat maps (friction_fmu.sweep_plot) and the coupled run's
 
 A solver or friction law keeps one colour, marker and line style in every figure, so dopri5 read
 in one plot is dopri5 in the next. The names are the items of the FMUs' `solver`, `law` and
-`slip_law` switches (src/interface/*.rs). Any other series (a family such as vd = 0.1, 0.3, 0.8
+`slip_law` switches (src/models/*/table.rs). Any other series (a family such as vd = 0.1, 0.3, 0.8
 mm/s) takes its colour from a sequential colour map in the order given, so an ordered parameter
 reads as ordered.
 

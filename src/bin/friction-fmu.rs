@@ -3,14 +3,14 @@
 //!   friction-fmu build [--out DIR]   pack every model into DIR/<Model>.fmu (default fmu-out) and
 //!                                    the drive-coupled system into DIR/DriveFriction.ssp
 //!   friction-fmu build FILE.toml... [--out DIR]
-//!                                    pack each scene file into DIR/<name>.fmu: the model's
+//!                                    pack each variant into DIR/<name>.fmu: the model's
 //!                                    library with only the variables the file keeps
-//!   friction-fmu run [--out DIR]     build, pack the shipped scenes/*.toml into DIR/scenes, then
+//!   friction-fmu run [--out DIR]     build, pack the shipped variants/*.toml into DIR/variants, then
 //!                                    print each scene's tables beside the papers' and write
 //!                                    figures into DIR/figures (the default command)
 //!   friction-fmu report [--out DIR]  error against run time of every solver of every scene:
 //!                                    DIR/<scene>.md tables and DIR/<scene>.png/.svg plots
-//!                                    (default DIR: fmu-out/report); trimmed scenes against the
+//!                                    (default DIR: fmu-out/report); variants against the
 //!                                    full ones in DIR/trimmed.md; then prints the stability
 //!                                    matrix
 //!
@@ -18,38 +18,38 @@
 //! it by the Python package, with .venv's interpreter when it has matplotlib
 //! (report::figure::draw).
 
-use friction_fmu::{package, report, scene_file, scenes};
+use friction_fmu::{models, package, report, variant};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: friction-fmu [build [SCENE.toml...]|run|report] [--out DIR] [--version]\n  (no command: run)\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out) and the drive-coupled system into DIR/DriveFriction.ssp\n          or, given scene files, each into DIR/<name>.fmu with only the variables it keeps\n  run     build, pack scenes/*.toml into DIR/scenes, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.png/.svg (default DIR: fmu-out/report), trimmed against full scenes: DIR/trimmed.md, then the stability matrix\n  figures are written as data (.csv, .json) and drawn into .png and .svg by .venv/bin/python -m friction_fmu.figures DIR";
+const USAGE: &str = "usage: friction-fmu [build [VARIANT.toml...]|run|report] [--out DIR] [--version]\n  (no command: run)\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out) and the drive-coupled system into DIR/DriveFriction.ssp\n          or, given variants, each into DIR/<name>.fmu with only the variables it keeps\n  run     build, pack variants/*.toml into DIR/variants, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.png/.svg (default DIR: fmu-out/report), variants against the full models: DIR/trimmed.md, then the stability matrix\n  figures are written as data (.csv, .json) and drawn into .png and .svg by .venv/bin/python -m friction_fmu.figures DIR";
 
 /// The FMU libraries of every model and platform whose toolchain is installed, built from the
 /// source tree this program was built from.
 fn libraries() -> Result<Vec<package::Library>, String> {
-    package::platforms::libraries(Path::new(env!("CARGO_MANIFEST_DIR")), scene_file::trimmable)
+    package::platforms::libraries(Path::new(env!("CARGO_MANIFEST_DIR")), variant::trimmable)
 }
 
-/// Packs scene files; all are checked before any library is built or FMU written. `libraries`:
+/// Packs variants; all are checked before any library is built or FMU written. `libraries`:
 /// those already built, if any.
-fn build_scenes(
+fn build_variants(
     files: &[PathBuf],
     out: &Path,
     libraries: Option<&[package::Library]>,
 ) -> Result<(), String> {
-    let scenes = files
+    let variants = files
         .iter()
-        .map(|file| scene_file::read(file))
+        .map(|file| variant::read(file))
         .collect::<Result<Vec<_>, _>>()?;
-    for (i, scene) in scenes.iter().enumerate() {
+    for (i, variant) in variants.iter().enumerate() {
         // One letter case apart is the same file on Windows' and macOS's file systems.
-        let same = |s: &scene_file::SceneFile| s.name.eq_ignore_ascii_case(&scene.name);
-        if let Some(other) = scenes[..i].iter().position(same) {
+        let same = |s: &variant::Variant| s.name.eq_ignore_ascii_case(&variant.name);
+        if let Some(other) = variants[..i].iter().position(same) {
             return Err(format!(
                 "{} and {} both name their FMU \"{}\" (up to letter case): expected one FMU per name",
                 files[other].display(),
                 files[i].display(),
-                scene.name
+                variant.name
             ));
         }
     }
@@ -61,16 +61,16 @@ fn build_scenes(
             &built
         }
     };
-    for scene in &scenes {
-        let path = package::pack_scene(scene, libraries, out)
-            .map_err(|e| format!("packing {}: {e}", scene.name))?;
+    for variant in &variants {
+        let path = package::pack_variant(variant, libraries, out)
+            .map_err(|e| format!("packing {}: {e}", variant.name))?;
         println!("wrote {}", path.display());
     }
     Ok(())
 }
 
 fn build(out: &Path, libraries: &[package::Library]) -> Result<(), String> {
-    for model in scenes::MODELS {
+    for model in models::MODELS {
         let path = package::pack(model.table.model_identifier, libraries, out)
             .map_err(|e| format!("packing {}: {e}", model.table.model_identifier))?;
         println!("wrote {}", path.display());
@@ -85,10 +85,10 @@ fn build(out: &Path, libraries: &[package::Library]) -> Result<(), String> {
     Ok(())
 }
 
-/// The scene files shipped in `scenes/` (one per figure and table of the papers), when run from
+/// The variants shipped in `variants/` (one per figure and table of the papers), when run from
 /// the source tree.
-fn shipped_scene_files() -> Vec<PathBuf> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir("scenes")
+fn shipped_variants() -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir("variants")
         .map(|dir| {
             dir.filter_map(|entry| entry.ok().map(|e| e.path()))
                 .filter(|path| path.extension().is_some_and(|ext| ext == "toml"))
@@ -102,9 +102,9 @@ fn shipped_scene_files() -> Vec<PathBuf> {
 fn run(out: &Path) -> Result<(), String> {
     let libraries = libraries()?;
     build(out, &libraries)?;
-    let files = shipped_scene_files();
+    let files = shipped_variants();
     if !files.is_empty() {
-        build_scenes(&files, &out.join("scenes"), Some(&libraries))?;
+        build_variants(&files, &out.join("variants"), Some(&libraries))?;
     }
     let figures = out.join("figures");
     std::fs::create_dir_all(&figures).map_err(|e| format!("{}: {e}", figures.display()))?;
@@ -201,7 +201,7 @@ fn main() -> ExitCode {
         i += 1;
     }
     let result = match command {
-        "build" if !files.is_empty() => build_scenes(
+        "build" if !files.is_empty() => build_variants(
             &files,
             &out.unwrap_or_else(|| PathBuf::from("fmu-out")),
             None,

@@ -2,31 +2,31 @@
 //!
 //! The crate's own cdylib exports every model ([`Binary::ALL`], for the in-process driver, the
 //! Rust tests and the report). The library packed into an FMU is built from `binary/`, a crate
-//! that names one model and whether it reads scene files: the linker then leaves every other
+//! that names one model and whether it reads variants: the linker then leaves every other
 //! model out, and fmi2Instantiate refuses any GUID but its FMU's.
 
-use crate::scene_file::registry::{self, Loaded};
-use crate::scenes::{Model, MODELS};
+use crate::models::{Model, MODELS};
+use crate::variant::registry::{self, Loaded};
 use std::sync::Arc;
 
-/// Finds the scene file behind a GUID (see [`registry::for_guid`]).
-pub type SceneFiles = fn(&str, Option<&str>, &'static [Model]) -> Result<Arc<Loaded>, String>;
+/// Finds the variant behind a GUID (see [`registry::for_guid`]).
+pub type Variants = fn(&str, Option<&str>, &'static [Model]) -> Result<Arc<Loaded>, String>;
 
 /// The models a library carries and which GUIDs it accepts.
 pub struct Binary {
     pub models: &'static [Model],
     /// Accept the full models' GUIDs (a full model's FMU).
     pub full_models: bool,
-    /// Accept a scene FMU's GUID, checked against its resources/scene.toml; None leaves the
-    /// scene-file reader out of the library.
-    pub scene_files: Option<SceneFiles>,
+    /// Accept a variant FMU's GUID, checked against its resources/variant.toml; None leaves the
+    /// variant reader out of the library.
+    pub variants: Option<Variants>,
 }
 
 impl Binary {
     pub const ALL: Binary = Binary {
         models: MODELS,
         full_models: true,
-        scene_files: Some(registry::for_guid),
+        variants: Some(registry::for_guid),
     };
 }
 
@@ -336,22 +336,22 @@ macro_rules! export_fmi2 {
 }
 
 /// Exports the FMI 2.0 functions of one FMU's library: `$model` names a model constant of
-/// [`crate::scenes`]; `full` accepts its GUID, `scene` a scene file's (and carries the reader).
+/// [`crate::models`]; `full` accepts its GUID, `variant` a variant's (and carries the reader).
 #[macro_export]
 macro_rules! export_fmu_library {
     ($model:ident, full) => {
         static BINARY: $crate::fmi2::binary::Binary = $crate::fmi2::binary::Binary {
-            models: &[$crate::scenes::$model],
+            models: &[$crate::models::$model],
             full_models: true,
-            scene_files: None,
+            variants: None,
         };
         $crate::export_fmi2!(&BINARY);
     };
-    ($model:ident, scene) => {
+    ($model:ident, variant) => {
         static BINARY: $crate::fmi2::binary::Binary = $crate::fmi2::binary::Binary {
-            models: &[$crate::scenes::$model],
+            models: &[$crate::models::$model],
             full_models: false,
-            scene_files: Some($crate::scene_file::registry::for_guid),
+            variants: Some($crate::variant::registry::for_guid),
         };
         $crate::export_fmi2!(&BINARY);
     };

@@ -11,9 +11,9 @@ use super::ffi::*;
 use super::instance::{Instance, Phase};
 use super::logger::Logger;
 use super::snapshot::{self, Snapshot};
-use crate::interface::variable::Kind;
-use crate::scene_file::registry::Loaded;
-use crate::scenes::Model;
+use crate::models::Model;
+use crate::variables::variable::Kind;
+use crate::variant::registry::Loaded;
 use std::ffi::{c_int, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -98,8 +98,8 @@ pub extern "C" fn fmi2GetVersion() -> FmiString {
 }
 
 /// The model and GUID an fmuGUID names among what `binary` carries: a full model's, or else a
-/// scene FMU's, whose resources/scene.toml must describe an interface with that GUID.
-fn interface_of(
+/// variant FMU's, whose resources/variant.toml must describe an interface with that GUID.
+fn model_of_guid(
     binary: &Binary,
     guid: &str,
     resource_location: Option<&str>,
@@ -121,7 +121,7 @@ fn interface_of(
         .map(|(m, g)| format!("{g} ({})", m.table.model_identifier))
         .collect();
     let this = if known.is_empty() {
-        "this binary is a scene FMU's: expected the GUID of the scene file in its resources"
+        "this binary is a variant FMU's: expected the GUID of the variant in its resources"
             .to_string()
     } else {
         format!(
@@ -129,14 +129,14 @@ fn interface_of(
             known.join(" or ")
         )
     };
-    let Some(scene_files) = binary.scene_files else {
+    let Some(variants) = binary.variants else {
         return Err(format!(
             "fmuGUID \"{guid}\" matches no model of this binary: {this}"
         ));
     };
-    scene_files(guid, resource_location, binary.models)
-        // A scene file's instance takes its GUID from the file.
-        .map(|loaded| (loaded.scene.model, "", Some(loaded)))
+    variants(guid, resource_location, binary.models)
+        // A variant's instance takes its GUID from the file.
+        .map(|loaded| (loaded.variant.model, "", Some(loaded)))
         .map_err(|why| format!("fmuGUID \"{guid}\" matches no model of this binary: {this}; {why}"))
 }
 
@@ -197,14 +197,14 @@ pub unsafe fn instantiate(
                 ));
             }
         }
-        let (model, guid, scene) = match interface_of(binary, guid, location) {
+        let (model, guid, variant) = match model_of_guid(binary, guid, location) {
             Ok(found) => found,
             Err(message) => return refuse(message),
         };
         let id = NEXT_ID.fetch_add(1, Ordering::Relaxed);
         let mut instance = Instance::new(id, model, guid, logger, logging_on != FALSE);
-        if let Some(loaded) = scene {
-            instance = instance.for_scene(loaded);
+        if let Some(loaded) = variant {
+            instance = instance.for_variant(loaded);
         }
         let address = Box::into_raw(Box::new(instance));
         // Ids start at 1, so no handle is NULL.
@@ -238,7 +238,7 @@ pub unsafe extern "C" fn fmi2FreeInstance(c: Component) {
                 drop(Box::from_raw(snapshot as *mut Snapshot));
             }
             drop(instance);
-            crate::scene_file::registry::release_unused();
+            crate::variant::registry::release_unused();
         }));
     }
 }

@@ -2,17 +2,17 @@
 //!
 //! Every public method checks that the call is legal in the current phase, does its work and
 //! returns the status; every refusal is logged naming the function, what was wrong and what was
-//! expected. The physics is the scene's; this file only moves values and time.
+//! expected. The physics is the simulation's; this file only moves values and time.
 
 use super::ffi::Status;
 use super::logger::{Logger, CATEGORY_CALLS, CATEGORY_ERROR, CATEGORY_WARNING};
-use crate::interface::unread_inputs::UnreadInputs;
-use crate::interface::values::{check_value, ValueSet};
-use crate::interface::variable::{
+use crate::models::{clock_warning, Model, Scope, Simulation, HELD_INPUTS};
+use crate::variables::unread_inputs::UnreadInputs;
+use crate::variables::values::{check_value, ValueSet};
+use crate::variables::variable::{
     Causality, Kind, ModelTable, Variability, Variable, LOG_CATEGORIES,
 };
-use crate::scene_file::registry::Loaded;
-use crate::scenes::{clock_warning, Model, Scene, Scope, HELD_INPUTS};
+use crate::variant::registry::Loaded;
 use std::sync::Arc;
 
 /// Where an instance is in its life (FMI 2.0 co-simulation state machine).
@@ -60,38 +60,38 @@ impl Phase {
 use super::calls::Call;
 use Phase::*;
 
-/// The most numbers a scene's saved state holds (TransverseFriction with two_phase: 22), with
-/// room to spare; `rollback_buffer_fits_every_scene` checks it.
+/// The most numbers a simulation's saved state holds (TransverseFriction with two_phase: 22), with
+/// room to spare; `rollback_buffer_fits_every_model` checks it.
 const ROLLBACK_CAPACITY: usize = 64;
 
 pub struct Instance {
     pub id: u64,
     pub model: &'static Model,
-    /// The full model's GUID; a scene file's instance takes its own from `scene_file`.
+    /// The full model's GUID; a variant's instance takes its own from `variant`.
     model_guid: &'static str,
-    /// The scene file a scene FMU's instance was made from; it lives as long as its instances.
-    scene_file: Option<Arc<Loaded>>,
+    /// The variant a variant FMU's instance was made from; it lives as long as its instances.
+    variant: Option<Arc<Loaded>>,
     logger: Logger,
     log_calls: bool,
     pub phase: Phase,
     pub values: ValueSet,
     /// The values fmi2Instantiate set and fmi2Reset restores: the model's start values, or a
-    /// scene file's.
+    /// variant's.
     defaults: ValueSet,
     /// What the interface hides (nothing for a full model).
     pub scope: Scope,
-    pub scene: Option<Box<dyn Scene>>,
+    pub sim: Option<Box<dyn Simulation>>,
     pub start_time: f64,
     pub stop_time: Option<f64>,
     pub time: f64,
     pub last_successful_time: f64,
     /// Addresses of the FMU states this instance handed out and has not freed.
     pub snapshots: Vec<usize>,
-    /// The scene's state at the start of the step under way, to roll a failed step back to
-    /// lastSuccessfulTime. Room for every scene's state from the start, so that fmi2DoStep
+    /// The simulation's state at the start of the step under way, to roll a failed step back to
+    /// lastSuccessfulTime. Room for every model's state from the start, so that fmi2DoStep
     /// never allocates (also after an FMU state with another solver is restored).
     rollback: Vec<f64>,
-    /// Input derivatives set before the scene exists (handed to it when it is built); once it
+    /// Input derivatives set before the simulation exists (handed to it when it is built); once it
     /// exists they go straight to it. Capacity for every input, so setting never allocates.
     pending_derivatives: Vec<(u32, f64)>,
     /// Inputs set while their switch says they are not read.
@@ -136,14 +136,14 @@ impl Instance {
             id,
             model,
             model_guid: guid,
-            scene_file: None,
+            variant: None,
             logger,
             log_calls,
             phase: Instantiated,
             values: ValueSet::start(model.table),
             defaults: ValueSet::start(model.table),
             scope: Scope::full(),
-            scene: None,
+            sim: None,
             start_time: 0.0,
             stop_time: None,
             time: 0.0,
@@ -165,28 +165,26 @@ impl Instance {
         }
     }
 
-    /// The instance of a scene file's FMU: the file's name is its modelIdentifier, its values
+    /// The instance of a variant's FMU: the file's name is its modelIdentifier, its values
     /// replace the model's start values (also for fmi2Reset), its scope hides what its interface
     /// leaves out.
-    pub fn for_scene(mut self, loaded: Arc<Loaded>) -> Self {
-        self.values.clone_from(&loaded.scene.values);
-        self.defaults.clone_from(&loaded.scene.values);
+    pub fn for_variant(mut self, loaded: Arc<Loaded>) -> Self {
+        self.values.clone_from(&loaded.variant.values);
+        self.defaults.clone_from(&loaded.variant.values);
         self.scope.clone_from(&loaded.scope);
-        self.scene_file = Some(loaded);
+        self.variant = Some(loaded);
         self
     }
 
-    /// The FMU's modelIdentifier: the model's, or a scene file's name.
+    /// The FMU's modelIdentifier: the model's, or a variant's name.
     pub fn name(&self) -> &str {
-        self.scene_file
+        self.variant
             .as_ref()
-            .map_or(self.model.table.model_identifier, |f| &f.scene.name)
+            .map_or(self.model.table.model_identifier, |f| &f.variant.name)
     }
 
     pub fn guid(&self) -> &str {
-        self.scene_file
-            .as_ref()
-            .map_or(self.model_guid, |f| &f.guid)
+        self.variant.as_ref().map_or(self.model_guid, |f| &f.guid)
     }
 
     pub fn error(&self, message: &str) -> Status {
@@ -287,16 +285,16 @@ impl Instance {
         }
         self.outputs_current = false;
         match (self.model.build)(&self.values, self.start_time, &self.scope) {
-            Ok(mut scene) => {
+            Ok(mut sim) => {
                 let handed = self
                     .pending_derivatives
                     .iter()
-                    .try_for_each(|&(vr, derivative)| scene.set_input_derivative(vr, derivative));
+                    .try_for_each(|&(vr, derivative)| sim.set_input_derivative(vr, derivative));
                 self.pending_derivatives.clear();
                 if let Err(message) = handed {
                     return self.error(&format!("fmi2ExitInitializationMode: {message}"));
                 }
-                self.scene = Some(scene);
+                self.sim = Some(sim);
                 self.time = self.start_time;
                 self.last_successful_time = self.start_time;
                 self.phase = StepComplete;
@@ -320,14 +318,14 @@ impl Instance {
         Status::Ok
     }
 
-    /// Back to the state right after fmi2Instantiate: start values, no scene, time 0.
+    /// Back to the state right after fmi2Instantiate: start values, no simulation, time 0.
     pub fn reset(&mut self) -> Status {
         if let Err(status) = self.check_phase(Call::Reset) {
             return status;
         }
         self.phase = Instantiated;
         self.values.clone_from(&self.defaults);
-        self.scene = None;
+        self.sim = None;
         self.start_time = 0.0;
         self.stop_time = None;
         self.time = 0.0;
@@ -339,7 +337,7 @@ impl Instance {
         Status::Ok
     }
 
-    /// The variable a value reference names in this FMU's interface; a variable a scene file
+    /// The variable a value reference names in this FMU's interface; a variable a variant
     /// hides is refused exactly as one that does not exist.
     pub fn variable(
         &self,
@@ -372,19 +370,19 @@ impl Instance {
     }
 
     /// Outputs follow the current state and inputs; in initialisation mode they are computed
-    /// from a scene built from the values set so far. Computed once until either changes.
+    /// from a simulation built from the values set so far. Computed once until either changes.
     fn refresh_outputs(&mut self, function: &str) -> Result<(), Status> {
         if self.outputs_current {
             return Ok(());
         }
-        if let Some(scene) = &self.scene {
-            scene.write_outputs(&mut self.values);
+        if let Some(sim) = &self.sim {
+            sim.write_outputs(&mut self.values);
             self.outputs_current = true;
             return Ok(());
         }
         match (self.model.build)(&self.values, self.start_time, &self.scope) {
-            Ok(scene) => {
-                scene.write_outputs(&mut self.values);
+            Ok(sim) => {
+                sim.write_outputs(&mut self.values);
                 self.outputs_current = true;
                 Ok(())
             }
@@ -422,7 +420,7 @@ impl Instance {
                 return status;
             }
         }
-        // No NaN reaches the master silently (a scene can produce one where it cannot be
+        // No NaN reaches the master silently (a simulation can produce one where it cannot be
         // evaluated, e.g. at an absurd start time, or a step can leave one in an output). Every
         // reference was found above.
         let values = self.values.as_slice();
@@ -507,9 +505,9 @@ impl Instance {
                 && self.model.table.variable(vr).map(|v| v.causality) == Some(Causality::Input)
             {
                 self.pending_derivatives.retain(|&(r, _)| r != vr);
-                if let Some(scene) = self.scene.as_mut() {
+                if let Some(sim) = self.sim.as_mut() {
                     // Accepted when the derivative was: this model takes them for its inputs.
-                    let _ = scene.set_input_derivative(vr, 0.0);
+                    let _ = sim.set_input_derivative(vr, 0.0);
                 }
             }
         }
@@ -580,9 +578,9 @@ impl Instance {
             self.outputs_current = false;
         }
         for (&vr, &derivative) in value_references.iter().zip(derivatives) {
-            match self.scene.as_mut() {
-                Some(scene) => {
-                    if let Err(message) = scene.set_input_derivative(vr, derivative) {
+            match self.sim.as_mut() {
+                Some(sim) => {
+                    if let Err(message) = sim.set_input_derivative(vr, derivative) {
                         return self.error(&format!("{FUNCTION}: {message}"));
                     }
                 }
@@ -596,7 +594,7 @@ impl Instance {
     }
 
     /// fmi2GetRealOutputDerivatives: first derivatives of outputs at the current time, where
-    /// the scene has them exactly.
+    /// the simulation has them exactly.
     pub fn get_output_derivatives(
         &mut self,
         value_references: &[u32],
@@ -617,12 +615,12 @@ impl Instance {
                 Ok(var) => var,
                 Err(status) => return status,
             };
-            let Some(scene) = self.scene.as_ref() else {
+            let Some(sim) = self.sim.as_ref() else {
                 return self.error(&format!(
-                    "{FUNCTION}: no scene: fmi2ExitInitializationMode has not succeeded"
+                    "{FUNCTION}: no simulation: fmi2ExitInitializationMode has not succeeded"
                 ));
             };
-            match scene.output_derivative(vr, &self.values) {
+            match sim.output_derivative(vr, &self.values) {
                 Ok(x) if x.is_finite() => out[i] = x,
                 Ok(x) => {
                     return self.error(&format!(
@@ -672,26 +670,26 @@ impl Instance {
                 self.time.abs() * f64::EPSILON
             ));
         }
-        let Some(scene) = self.scene.as_mut() else {
+        let Some(sim) = self.sim.as_mut() else {
             return self
-                .error("fmi2DoStep: no scene: fmi2ExitInitializationMode has not succeeded");
+                .error("fmi2DoStep: no simulation: fmi2ExitInitializationMode has not succeeded");
         };
-        scene.save_into(&mut self.rollback);
+        sim.save_into(&mut self.rollback);
         self.outputs_current = false;
-        match scene.do_step(target - self.time, &self.values) {
+        match sim.do_step(target - self.time, &self.values) {
             Ok(()) => {
-                // The scenes check their states; the outputs are computed when they are read,
+                // The simulations check their states; the outputs are computed when they are read,
                 // and the getters refuse a non-finite one, so no NaN reaches the master silently.
-                self.time = scene.time();
+                self.time = sim.time();
                 self.last_successful_time = self.time;
                 // A step that succeeded but left a warning (a solver that is a poor fit):
                 // fmi2Warning, with the message logged (FMI 2.0, 2.1.3).
-                let clock = match scene.reading_period() {
+                let clock = match sim.reading_period() {
                     Some(reading) if !self.clock_warned => clock_warning(self.time, reading),
                     _ => None,
                 };
                 self.clock_warned |= clock.is_some();
-                let warnings = [scene.take_warning(), clock];
+                let warnings = [sim.take_warning(), clock];
                 for message in warnings.iter().flatten() {
                     self.warning(&format!("fmi2DoStep: {message}"));
                 }
@@ -705,7 +703,7 @@ impl Instance {
                 // Back to where the step started, so that outputs, their derivatives and FMU
                 // states read now are those of lastSuccessfulTime, not of a model stopped
                 // half-way (or of one that broke down: a non-finite state).
-                if let Err(why) = scene.restore(&self.rollback) {
+                if let Err(why) = sim.restore(&self.rollback) {
                     self.phase = Error;
                     return self.error(&format!(
                         "fmi2DoStep: the step from t = {current_communication_point} by {step} could not be completed ({message}), nor rolled back: {why}"
@@ -730,14 +728,14 @@ impl Instance {
 #[cfg(test)]
 mod tests {
     use super::ROLLBACK_CAPACITY;
-    use crate::interface::values::ValueSet;
+    use crate::models::{Scope, MODELS};
     use crate::report::stability::solvers;
-    use crate::scenes::{Scope, MODELS};
+    use crate::variables::values::ValueSet;
 
-    /// fmi2DoStep saves the scene into a buffer of this capacity before every step; a state
+    /// fmi2DoStep saves the simulation into a buffer of this capacity before every step; a state
     /// that did not fit would allocate there.
     #[test]
-    fn rollback_buffer_fits_every_scene() {
+    fn rollback_buffer_fits_every_model() {
         for model in MODELS {
             let table = model.table;
             let id = table.model_identifier;
@@ -749,9 +747,9 @@ mod tests {
                     let var = table.by_name("solver").expect("a solver parameter");
                     values.set(var.value_reference, code as f64);
                 }
-                let scene = (model.build)(&values, 0.0, &Scope::full())
+                let sim = (model.build)(&values, 0.0, &Scope::full())
                     .unwrap_or_else(|e| panic!("{id} solver {code:?}: {e}"));
-                let saved = scene.save().len();
+                let saved = sim.save().len();
                 assert!(
                     saved <= ROLLBACK_CAPACITY,
                     "{id} solver {code:?}: {saved} numbers"

@@ -7,8 +7,8 @@
 //! without reading past the data's end.
 
 use super::instance::{Instance, Phase};
-use crate::interface::values::check_value;
-use crate::interface::variable::{Causality, Kind};
+use crate::variables::values::check_value;
+use crate::variables::variable::{Causality, Kind};
 
 const MAGIC: &[u8; 8] = b"FRICFMU\x02";
 
@@ -35,7 +35,7 @@ pub struct Snapshot {
     pub last_successful_time: f64,
     pub values: Vec<f64>,
     /// None before initialisation has finished.
-    pub scene: Option<Vec<f64>>,
+    pub sim: Option<Vec<f64>>,
 }
 
 impl Snapshot {
@@ -49,7 +49,7 @@ impl Snapshot {
             time: instance.time,
             last_successful_time: instance.last_successful_time,
             values: instance.values.as_slice().to_vec(),
-            scene: instance.scene.as_ref().map(|s| s.save()),
+            sim: instance.sim.as_ref().map(|s| s.save()),
         }
     }
 
@@ -69,7 +69,7 @@ impl Snapshot {
                 instance.values.as_slice().len()
             ));
         }
-        // Only values the setters would accept (outputs are recomputed from the scene). An
+        // Only values the setters would accept (outputs are recomputed from the simulation). An
         // Integer or Enumeration arrives through fmi2SetInteger, so it is a whole number; check
         // that here, as check_value lets NaN and fractions through for those kinds.
         let table = instance.model.table;
@@ -88,39 +88,40 @@ impl Snapshot {
             }
         }
         // A model exists from fmi2ExitInitializationMode on, and only then.
-        let needs_scene = !matches!(self.phase, Phase::Instantiated | Phase::InitializationMode);
-        if needs_scene != self.scene.is_some() {
+        let needs_simulation =
+            !matches!(self.phase, Phase::Instantiated | Phase::InitializationMode);
+        if needs_simulation != self.sim.is_some() {
             return Err(format!(
                 "the FMU state is in phase {} {} a model state: expected one {}",
                 self.phase.name(),
-                if needs_scene { "without" } else { "with" },
-                if needs_scene {
+                if needs_simulation { "without" } else { "with" },
+                if needs_simulation {
                     "with it after fmi2ExitInitializationMode"
                 } else {
                     "without it before"
                 }
             ));
         }
-        let scene = match &self.scene {
+        let sim = match &self.sim {
             None => None,
             Some(state) => {
-                let mut scene = (instance.model.build)(&values, self.start_time, &instance.scope)?;
-                scene.restore(state)?;
-                // A scene whose clock is not the instance's would step from another time (a
+                let mut sim = (instance.model.build)(&values, self.start_time, &instance.scope)?;
+                sim.restore(state)?;
+                // A simulation whose clock is not the instance's would step from another time (a
                 // forged state could make a step that never ends). A failed step is rolled
                 // back, so this holds in StepFailed too.
-                if scene.time() != self.time {
+                if sim.time() != self.time {
                     return Err(format!(
                         "the FMU state's model is at t = {} but the state says t = {}: expected the same time",
-                        scene.time(),
+                        sim.time(),
                         self.time
                     ));
                 }
-                Some(scene)
+                Some(sim)
             }
         };
         instance.values = values;
-        instance.scene = scene;
+        instance.sim = sim;
         instance.outputs_current = false;
         instance.phase = self.phase;
         instance.start_time = self.start_time;
@@ -140,9 +141,9 @@ impl Snapshot {
             self.values.len() as f64,
         ];
         numbers.extend(&self.values);
-        if let Some(scene) = &self.scene {
-            numbers.push(scene.len() as f64);
-            numbers.extend(scene);
+        if let Some(sim) = &self.sim {
+            numbers.push(sim.len() as f64);
+            numbers.extend(sim);
         } else {
             numbers.push(-1.0);
         }
@@ -213,21 +214,21 @@ impl Snapshot {
         let values = (0..n_values)
             .map(|_| next("the values"))
             .collect::<Result<Vec<_>, _>>()?;
-        let n_scene = next("the scene state")?;
-        let scene = if n_scene == -1.0 {
+        let n_simulation = next("the simulation state")?;
+        let sim = if n_simulation == -1.0 {
             None
         } else {
-            let n = count(n_scene).ok_or_else(|| corrupt("bad state length"))?;
+            let n = count(n_simulation).ok_or_else(|| corrupt("bad state length"))?;
             Some(
                 (0..n)
-                    .map(|_| next("the scene state"))
+                    .map(|_| next("the simulation state"))
                     .collect::<Result<Vec<_>, _>>()?,
             )
         };
         if next("its end").is_ok() {
             return Err(corrupt("it has trailing data"));
         }
-        // Times the setters would refuse must not come in this way either: a scene built at a
+        // Times the setters would refuse must not come in this way either: a simulation built at a
         // start time of -inf never finishes a step.
         let finite_times = [start_time, time, last_successful_time]
             .iter()
@@ -247,7 +248,7 @@ impl Snapshot {
             time,
             last_successful_time,
             values,
-            scene,
+            sim,
         })
     }
 }

@@ -6,7 +6,7 @@
 
 use super::sgn;
 
-/// Which approximation, with its parameters (h >= 0, D > 0, Da >= 0 are the scene's to check).
+/// Which approximation, with its parameters (h >= 0, D > 0, Da >= 0 are the simulation's to check).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Regularized {
     Linear { h: f64, d: f64 },

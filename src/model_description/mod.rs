@@ -1,13 +1,13 @@
 //! The one modelDescription.xml writer: full models (written by `build.rs`, which includes this
-//! module with `#[path]`) and the trimmed interfaces of scene files (written by the library when
+//! module with `#[path]`) and the trimmed interfaces of variants (written by the library when
 //! it packs one, and again at fmi2Instantiate to check its GUID) come from the same code.
 //!
-//! Like `src/interface`, it depends only on that module (as `crate::interface`), serde and
+//! Like `src/variables`, it depends only on that module (as `crate::interface`), serde and
 //! quick-xml, so it compiles the same in both places.
 
 mod xml;
 
-use crate::interface::variable::{Causality, EnumType, Kind, ModelTable, Variable, UNITS};
+use crate::variables::variable::{Causality, EnumType, Kind, ModelTable, Variable, UNITS};
 use xml::*;
 
 /// The DefaultExperiment; `tolerance` is left out of the XML when None.
@@ -20,8 +20,8 @@ pub struct Experiment {
 }
 
 /// Everything one modelDescription.xml says: the variables it lists (a whole table, or the part
-/// a scene file keeps) with their start values, and the model's name and experiment.
-pub struct Interface<'a> {
+/// a variant keeps) with their start values, and the model's name and experiment.
+pub struct Description<'a> {
     pub model_identifier: &'a str,
     pub description: &'a str,
     /// In the order ModelVariables lists them (their 1-based indices are used by ModelStructure).
@@ -33,17 +33,17 @@ pub struct Interface<'a> {
     pub experiment: Experiment,
     /// canInterpolateInputs, and first output derivatives (maxOutputDerivativeOrder = 1).
     pub interpolates_inputs: bool,
-    /// What the XML does not show but the FMU runs with (a scene file's model and hidden values),
+    /// What the XML does not show but the FMU runs with (a variant's model and hidden values),
     /// hashed into the GUID with the XML so that changing any of it changes the GUID; empty for a
     /// full model.
     pub hidden: &'a str,
 }
 
-impl<'a> Interface<'a> {
+impl<'a> Description<'a> {
     /// A whole model table, as `build.rs` writes it.
     pub fn full(table: &'a ModelTable, variables: &'a [&'a Variable]) -> Self {
         let e = table.default_experiment;
-        Interface {
+        Description {
             model_identifier: table.model_identifier,
             description: table.description,
             variables,
@@ -150,7 +150,7 @@ impl<'a> Interface<'a> {
 
     fn model_structure(&self) -> ModelStructure {
         // ModelVariables indices are 1-based, in list order. A dependency on an input the list
-        // leaves out (a scene file's hidden input, held at its value) is no dependency.
+        // leaves out (a variant's hidden input, held at its value) is no dependency.
         let index_of = |vr: u32| {
             self.variables
                 .iter()
@@ -249,7 +249,7 @@ impl<'a> Interface<'a> {
                     .collect(),
             },
             log_categories: LogCategories {
-                categories: crate::interface::variable::LOG_CATEGORIES
+                categories: crate::variables::variable::LOG_CATEGORIES
                     .iter()
                     .map(|&(name, description)| Category { name, description })
                     .collect(),
@@ -292,16 +292,16 @@ pub fn guid_of(text: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::Interface;
-    use crate::interface::variable::Variable;
+    use super::Description;
+    use crate::variables::variable::Variable;
 
     /// Oracle: the XML and GUID `build.rs` wrote into OUT_DIR: the library's writer, which also
-    /// writes scene files, gives the same bytes for a whole table.
+    /// writes variants, gives the same bytes for a whole table.
     #[test]
     fn library_writes_the_full_models_as_the_build_script_did() {
-        for table in crate::interface::MODELS {
+        for table in crate::models::MODELS.iter().map(|m| m.table) {
             let variables: Vec<&Variable> = table.variables.iter().collect();
-            let (guid, xml) = Interface::full(table, &variables).write();
+            let (guid, xml) = Description::full(table, &variables).write();
             let id = table.model_identifier;
             assert_eq!(Some(xml.as_str()), crate::package::model_description(id));
             assert_eq!(Some(guid.as_str()), crate::fmi2::guid(id));
@@ -312,7 +312,7 @@ mod tests {
     /// `friction-fmu build` (which refreshes the copies) fails here, naming the file.
     #[test]
     fn committed_model_descriptions_are_current() {
-        for table in crate::interface::MODELS {
+        for table in crate::models::MODELS.iter().map(|m| m.table) {
             let id = table.model_identifier;
             let path = format!("{}/{id}.xml", crate::package::COMMITTED_XML_DIR);
             let committed = std::fs::read_to_string(&path).unwrap_or_default();

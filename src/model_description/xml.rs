@@ -1,6 +1,6 @@
 //! The XML shape of modelDescription.xml (FMI 2.0), as serde structs for quick-xml.
 
-use crate::interface::variable::{Causality, Variability};
+use crate::variables::variable::{Causality, Variability};
 use serde::Serialize;
 
 #[derive(Serialize)]

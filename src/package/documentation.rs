@@ -1,10 +1,10 @@
 //! documentation/index.html: the model's equations and source (hand-written, per model) and its
-//! variables (generated from the same table as modelDescription.xml). A scene file's page lists
+//! variables (generated from the same table as modelDescription.xml). A variant's page lists
 //! the variables it keeps, with its start values, and the values it fixes.
 
-use crate::interface::variable::{Causality, Kind, ModelTable, Variable};
-use crate::scene_file::SceneFile;
-use crate::scenes::Model;
+use crate::models::Model;
+use crate::variables::variable::{Causality, Kind, ModelTable, Variable};
+use crate::variant::Variant;
 
 fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
@@ -16,7 +16,7 @@ fn escape(text: &str) -> String {
 /// (switches are set with fmi2SetInteger, by number).
 fn value_text(table: &ModelTable, var: &Variable, value: f64) -> String {
     match var.kind {
-        Kind::Real { .. } => crate::interface::values::number(value),
+        Kind::Real { .. } => crate::variables::values::number(value),
         Kind::Integer { .. } => (value as i64).to_string(),
         Kind::Switch { type_name, .. } => {
             let enum_type = table.enum_type(type_name);
@@ -113,32 +113,32 @@ pub fn page(model: &Model) -> String {
     html(table.model_identifier, table.description, &body)
 }
 
-/// A scene file's page: what it keeps (start values from the file), what it fixes, then the
-/// model's equations; the file itself is in resources/scene.toml.
-pub fn scene_page(scene: &SceneFile) -> String {
-    let table = scene.model.table;
-    let value = |v: &Variable| scene.values.real(v.value_reference);
-    let fixed: Vec<&Variable> = scene.fixed().into_iter().map(|(v, _)| v).collect();
+/// A variant's page: what it keeps (start values from the file), what it fixes, then the
+/// model's equations; the file itself is in resources/variant.toml.
+pub fn variant_page(variant: &Variant) -> String {
+    let table = variant.model.table;
+    let value = |v: &Variable| variant.values.real(v.value_reference);
+    let fixed: Vec<&Variable> = variant.fixed().into_iter().map(|(v, _)| v).collect();
     let body = format!(
-        "<p>A scene of <code>{model}</code>: only the variables below are in the interface; every other \
-         parameter and input is fixed at the value listed under <i>Fixed values</i>. The scene file is \
-         <code>resources/scene.toml</code>.</p>\n{kept}{fixed}<h2>Model {model}</h2>\n{equations}\n",
+        "<p>A simulation of <code>{model}</code>: only the variables below are in the interface; every other \
+         parameter and input is fixed at the value listed under <i>Fixed values</i>. The variant is \
+         <code>resources/variant.toml</code>.</p>\n{kept}{fixed}<h2>Model {model}</h2>\n{equations}\n",
         model = table.model_identifier,
-        kept = sections(table, &scene.kept_variables(), &value),
+        kept = sections(table, &variant.kept_variables(), &value),
         fixed = section("Fixed values", "value", &rows(table, fixed.into_iter(), &value)),
-        equations = scene.model.documentation,
+        equations = variant.model.documentation,
     );
-    html(&scene.name, &scene.description, &body)
+    html(&variant.name, &variant.description, &body)
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{page, scene_page};
+    use super::{page, variant_page};
 
     /// Every model ships a written description, and its page lists every variable.
     #[test]
     fn every_model_has_a_documentation_page() {
-        for model in crate::scenes::MODELS {
+        for model in crate::models::MODELS {
             let id = model.table.model_identifier;
             assert!(
                 model.documentation.contains("<h2>Source</h2>"),
@@ -155,12 +155,12 @@ mod tests {
         }
     }
 
-    /// A scene's page shows each kept variable once with the file's value, and each fixed one.
+    /// A simulation's page shows each kept variable once with the file's value, and each fixed one.
     #[test]
-    fn a_scene_page_lists_kept_and_fixed_values() {
+    fn a_variant_page_lists_kept_and_fixed_values() {
         let text = "name = \"S\"\nmodel = \"LongitudinalFriction\"\nlaw = \"coulomb\"\nsolver = \"rk4\"\ntunable = [\"vc\"]\noutputs = [\"FT_mean\"]\n[parameters]\nvc = 0.146\nkt = 3e4\n[experiment]\nstart = 0\nstop = 1e-3\nstep = 1e-5\n";
-        let scene = crate::scene_file::parse("s.toml", text).unwrap();
-        let html = scene_page(&scene);
+        let variant = crate::variant::parse("s.toml", text).unwrap();
+        let html = variant_page(&variant);
         assert!(html.contains("<tr><td><code>vc</code></td><td>0.146</td>"));
         assert!(html.contains("<tr><td><code>kt</code></td><td>30000</td>"));
         assert!(html.contains(

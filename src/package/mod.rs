@@ -1,12 +1,12 @@
 //! Packs an FMU: modelDescription.xml, the shared library of each platform under the model's
-//! name, and a documentation page, zipped as `<out_dir>/<modelIdentifier>.fmu`; a scene file's
+//! name, and a documentation page, zipped as `<out_dir>/<modelIdentifier>.fmu`; a variant's
 //! FMU also carries the file in resources/.
 
 mod documentation;
 pub mod platforms;
 pub mod ssp;
 
-use crate::scene_file::{self, SceneFile};
+use crate::variant::{self, Variant};
 use std::fs::File;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
@@ -42,11 +42,11 @@ pub(crate) fn library_extension(platform: &str) -> &'static str {
 }
 
 /// A compiled library: the platform folder it goes to, and the FMUs it is for (a model's full
-/// FMU, or its scene FMUs).
+/// FMU, or its variant FMUs).
 pub struct Library {
     pub platform: &'static str,
     pub model: &'static str,
-    pub scene: bool,
+    pub variant: bool,
     pub path: PathBuf,
 }
 
@@ -87,16 +87,16 @@ struct Contents<'a> {
     resources: &'a [(&'a str, &'a [u8])],
 }
 
-/// Writes the FMU with the libraries of `model` (its scene FMUs' when `scene`), one per platform.
+/// Writes the FMU with the libraries of `model` (its variant FMUs' when `variant`), one per platform.
 fn write_fmu(
     contents: &Contents,
     libraries: &[Library],
-    (model, scene): (&str, bool),
+    (model, variant): (&str, bool),
     out_dir: &Path,
 ) -> io::Result<PathBuf> {
     let libraries: Vec<&Library> = libraries
         .iter()
-        .filter(|l| l.model == model && l.scene == scene)
+        .filter(|l| l.model == model && l.variant == variant)
         .collect();
     if libraries.is_empty() {
         return Err(io::Error::new(
@@ -157,8 +157,8 @@ pub fn pack(model_identifier: &str, libraries: &[Library], out_dir: &Path) -> io
     let not_found = |what: String| io::Error::new(io::ErrorKind::NotFound, what);
     let xml = model_description(model_identifier)
         .ok_or_else(|| not_found(format!("no model {model_identifier} in this build")))?;
-    let model = crate::scenes::model(model_identifier)
-        .ok_or_else(|| not_found(format!("no scene for {model_identifier}")))?;
+    let model = crate::models::model(model_identifier)
+        .ok_or_else(|| not_found(format!("no simulation for {model_identifier}")))?;
     let contents = Contents {
         model_identifier,
         xml,
@@ -168,18 +168,22 @@ pub fn pack(model_identifier: &str, libraries: &[Library], out_dir: &Path) -> io
     write_fmu(&contents, libraries, (model_identifier, false), out_dir)
 }
 
-/// Writes `<out_dir>/<name>.fmu` for a scene file: its trimmed modelDescription.xml, the same
-/// library under the scene's name, its documentation page, and the file itself as
-/// resources/scene.toml, where the library finds it again at fmi2Instantiate.
-pub fn pack_scene(scene: &SceneFile, libraries: &[Library], out_dir: &Path) -> io::Result<PathBuf> {
-    let (_, xml) = scene.model_description();
+/// Writes `<out_dir>/<name>.fmu` for a variant: its trimmed modelDescription.xml, the same
+/// library under the simulation's name, its documentation page, and the file itself as
+/// resources/variant.toml, where the library finds it again at fmi2Instantiate.
+pub fn pack_variant(
+    variant: &Variant,
+    libraries: &[Library],
+    out_dir: &Path,
+) -> io::Result<PathBuf> {
+    let (_, xml) = variant.model_description();
     let contents = Contents {
-        model_identifier: &scene.name,
+        model_identifier: &variant.name,
         xml: &xml,
-        documentation: &documentation::scene_page(scene),
-        resources: &[(scene_file::RESOURCE, scene.text.as_bytes())],
+        documentation: &documentation::variant_page(variant),
+        resources: &[(variant::RESOURCE, variant.text.as_bytes())],
     };
-    let model = scene.model.table.model_identifier;
+    let model = variant.model.table.model_identifier;
     write_fmu(&contents, libraries, (model, true), out_dir)
 }
 

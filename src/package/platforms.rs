@@ -1,5 +1,5 @@
-//! The libraries the FMUs carry: one per model and kind (a full model's, or a scene FMU's that
-//! also reads its scene file), all built from `binary/` in one cargo run for every platform whose
+//! The libraries the FMUs carry: one per model and kind (a full model's, or a variant FMU's that
+//! also reads its variant), all built from `binary/` in one cargo run for every platform whose
 //! toolchain is installed, in the `fmu` profile (stripped):
 //!
 //! - linux64: `cargo-zigbuild` and `ziglang` from PyPI (in `.venv` or on PATH) link against
@@ -43,7 +43,7 @@ enum Toolchain {
     DebianWindows,
 }
 
-/// Builds every model's libraries (full, and scene where `trimmable` says a scene file can trim
+/// Builds every model's libraries (full, and variant where `trimmable` says a variant can trim
 /// the model) for every platform this machine can build, and returns them. `root` is the
 /// source tree.
 pub fn libraries(root: &Path, trimmable: impl Fn(&str) -> bool) -> Result<Vec<Library>, String> {
@@ -82,14 +82,14 @@ pub fn libraries(root: &Path, trimmable: impl Fn(&str) -> bool) -> Result<Vec<Li
     let mut libraries = Vec::new();
     for (platform, toolchain) in &toolchains {
         let built = build(toolchain, root).map_err(|e| format!("{platform} libraries: {e}"))?;
-        for model in crate::scenes::MODELS {
+        for model in crate::models::MODELS {
             let model = model.table.model_identifier;
-            for scene in [false, true] {
-                if scene && !trimmable(model) {
+            for variant in [false, true] {
+                if variant && !trimmable(model) {
                     continue;
                 }
-                let name = if scene {
-                    format!("{model}_scene")
+                let name = if variant {
+                    format!("{model}_variant")
                 } else {
                     model.to_string()
                 };
@@ -98,7 +98,7 @@ pub fn libraries(root: &Path, trimmable: impl Fn(&str) -> bool) -> Result<Vec<Li
                 libraries.push(Library {
                     platform,
                     model,
-                    scene,
+                    variant,
                     path: built.join(format!("{prefix}{name}.{extension}")),
                 });
             }

@@ -4,8 +4,8 @@
 //! values that make the two a system, and a default experiment, so that libcosim, ecos or any
 //! SSP tool runs it without a line of XML written by hand.
 
-use crate::interface::variable::{Kind, ModelTable};
-use crate::interface::{drive, transverse};
+use crate::models::{drive::table as drive, transverse::table as transverse};
+use crate::variables::variable::{Kind, ModelTable};
 use std::fmt::Write as _;
 use std::fs::File;
 use std::io::{self, Write};
@@ -214,7 +214,7 @@ mod tests {
         assert!(xml.contains("startElement=\"drive\" startConnector=\"v_nut\""));
         assert_eq!(xml.matches("<ssd:Connector ").count(), 4);
         assert_eq!(
-            crate::interface::variable::communication_grid(0.0, STOP_TIME, STEP_SIZE),
+            crate::variables::variable::communication_grid(0.0, STOP_TIME, STEP_SIZE),
             Ok(400)
         );
         let wrong = Component {

@@ -2,14 +2,14 @@
 //! slip law): the experiment, the quantity, the solvers and the settings swept.
 
 use super::work_precision::{Case, Knob, Setting};
-use crate::interface::values::ValueSet;
-use crate::interface::variable::EnumType;
-use crate::interface::{longitudinal as il, oscillator as io, transverse as it};
-use crate::scenes::longitudinal::Longitudinal;
-use crate::scenes::oscillator::Oscillator;
-use crate::scenes::transverse::Transverse;
-use crate::scenes::Scene;
+use crate::models::longitudinal::Longitudinal;
+use crate::models::oscillator::Oscillator;
+use crate::models::transverse::Transverse;
+use crate::models::Simulation;
+use crate::models::{longitudinal::table as il, oscillator::table as io, transverse::table as it};
 use crate::solve::Work;
+use crate::variables::values::ValueSet;
+use crate::variables::variable::EnumType;
 
 fn tolerances(solver: &'static str, from: i32, to: i32) -> Vec<Setting> {
     (from..=to)
@@ -52,12 +52,12 @@ pub fn longitudinal() -> Case {
             Knob::StepsPerPeriod(n) => v.set(il::vr::STEPS_PER_PERIOD, f64::from(n)),
             Knob::Tolerance(t) => v.set(il::vr::TOLERANCE, t),
         }
-        let mut scene = Longitudinal::new(&v, 0.0)?;
-        let period = 1.0 / scene.f;
+        let mut sim = Longitudinal::new(&v, 0.0)?;
+        let period = 1.0 / sim.f;
         for _ in 0..PERIODS {
-            scene.do_step(period, &v)?;
+            sim.do_step(period, &v)?;
         }
-        Ok((scene.mean_force(), scene.work))
+        Ok((sim.mean_force(), sim.work))
     };
     Case {
         stem: "longitudinal",
@@ -98,12 +98,12 @@ pub fn transverse(slip_law: &'static str) -> Case {
             Knob::StepsPerPeriod(n) => v.set(it::vr::STEPS_PER_PERIOD, f64::from(n)),
             Knob::Tolerance(t) => v.set(it::vr::TOLERANCE, t),
         }
-        let mut scene = Transverse::new(&v, 0.0)?;
+        let mut sim = Transverse::new(&v, 0.0)?;
         let period = 1.0 / 3000.0;
         for _ in 0..PERIODS {
-            scene.do_step(period, &v)?;
+            sim.do_step(period, &v)?;
         }
-        Ok((scene.mean_ffx(), scene.work))
+        Ok((sim.mean_ffx(), sim.work))
     };
     Case {
         stem: if slip_law == "total" {
@@ -147,13 +147,13 @@ pub fn oscillator() -> Case {
                 v.set(io::vr::STEPS_PER_PERIOD, 8.0);
             }
         }
-        let mut scene = Oscillator::new(&v, 0.0)?;
+        let mut sim = Oscillator::new(&v, 0.0)?;
         // Communication steps of 1/50 period, as steady_amplitude.
         let step = std::f64::consts::TAU / v.real(io::vr::W) / 50.0;
         for _ in 0..PERIODS * 50 {
-            scene.do_step(step, &v)?;
+            sim.do_step(step, &v)?;
         }
-        Ok((scene.amplitude(), scene.work))
+        Ok((sim.amplitude(), sim.work))
     };
     Case {
         stem: "oscillator",

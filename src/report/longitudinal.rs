@@ -1,9 +1,9 @@
 //! Scene L beside the paper: Tables 1-3 of Leus & Gutowski (2008), recomputed.
 
 use crate::friction::coulomb;
-use crate::interface::longitudinal::{vr, LAW, TABLE};
-use crate::interface::values::ValueSet;
-use crate::scenes::longitudinal::steady_mean_force;
+use crate::models::longitudinal::steady_mean_force;
+use crate::models::longitudinal::table::{vr, LAW, TABLE};
+use crate::variables::values::ValueSet;
 use std::io::{self, Write};
 
 /// Table 1 of the paper (va = 0.264 m/s, kt = 0.056 N/um): vc, FT_mean for Coulomb, Dahl and the

@@ -5,10 +5,10 @@
 //! with; the table measures it. The stiction laws are compared with `exact_stiction` at Da = D,
 //! i.e. the paper's ratio ha = h (eq. 7), so their limit stays the same as D shrinks.
 
-use crate::interface::oscillator::{vr, LAW, TABLE};
-use crate::interface::values::ValueSet;
+use crate::models::oscillator::table::{vr, LAW, TABLE};
+use crate::models::oscillator::{steady_amplitude, trajectory};
 use crate::report::figure::{Figure, Panel, Series};
-use crate::scenes::oscillator::{steady_amplitude, trajectory};
+use crate::variables::values::ValueSet;
 use std::io::{self, Write};
 use std::path::Path;
 

@@ -1,5 +1,5 @@
 //! The stability matrix (stiff and extreme cases): every
-//! solver of every scene against each extreme the scene has a parameter for, run through the
+//! solver of every scene against each extreme the model has a parameter for, run through the
 //! exported fmi2* functions as a master would (src/importer.rs), with the outcome of each run.
 //!
 //! Each case is short (a few periods, or a few thousand communication steps); the long run is
@@ -10,7 +10,7 @@ mod run;
 
 pub use run::{print, run, Outcome, Row};
 
-pub use crate::scenes::stability::Value;
+pub use crate::models::stability::Value;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Case {
@@ -28,10 +28,10 @@ use Value::Item;
 
 /// The `solver` items of a model, in the order of its table.
 pub fn solvers(model: &str) -> Vec<&'static str> {
-    crate::scenes::model(model)
+    crate::models::model(model)
         .and_then(|m| {
             let var = m.table.by_name("solver")?;
-            let crate::interface::variable::Kind::Switch { type_name, .. } = var.kind else {
+            let crate::variables::variable::Kind::Switch { type_name, .. } = var.kind else {
                 return None;
             };
             m.table.enum_type(type_name)
@@ -44,7 +44,7 @@ pub fn solvers(model: &str) -> Vec<&'static str> {
 /// Coulomb law (closed form) at each of their extremes.
 pub fn cases() -> Vec<Case> {
     let mut cases = Vec::new();
-    for descriptor in crate::scenes::MODELS {
+    for descriptor in crate::models::MODELS {
         let model = descriptor.table.model_identifier;
         let stability = &descriptor.stability;
         let extremes = stability.extremes;

@@ -6,10 +6,10 @@
 //! trends it shows (mean FFx falls as va rises and as vd falls) are the paper's claims.
 
 use super::figure::{Figure, Panel, Series};
-use crate::interface::transverse::{vr, INITIAL, TABLE};
-use crate::interface::values::ValueSet;
-use crate::scenes::transverse::Transverse;
-use crate::scenes::Scene;
+use crate::models::transverse::table::{vr, INITIAL, TABLE};
+use crate::models::transverse::Transverse;
+use crate::models::Simulation;
+use crate::variables::values::ValueSet;
 use std::io::Write as _;
 use std::path::Path;
 
@@ -43,14 +43,14 @@ fn values(vd: f64, va: f64, f: f64, initial: &str) -> ValueSet {
 /// Steady mean of FFx over AVERAGE periods from the periodic start, relative to FC.
 fn steady_mean_ratio(vd: f64, va: f64, f: f64) -> Result<f64, String> {
     let v = values(vd, va, f, "periodic");
-    let mut scene = Transverse::new(&v, 0.0)?;
+    let mut sim = Transverse::new(&v, 0.0)?;
     let period = 1.0 / f;
     let mut sum = 0.0;
     for _ in 0..AVERAGE {
-        scene.do_step(period, &v)?;
-        sum += scene.mean_ffx();
+        sim.do_step(period, &v)?;
+        sum += sim.mean_ffx();
     }
-    Ok(sum / f64::from(AVERAGE) / scene.fc)
+    Ok(sum / f64::from(AVERAGE) / sim.fc)
 }
 
 /// Prints the table at `f` and returns it, `[vd][va]` (NaN where the run failed).
@@ -113,19 +113,19 @@ fn fig5() -> Figure {
     let mut series: [Vec<Series>; 3] = Default::default();
     for vd in [1e-4, 3e-4, 8e-4, 2e-3, 4e-3] {
         let v = values(vd, va, f, "sliding");
-        let Ok(mut scene) = Transverse::new(&v, 0.0) else {
+        let Ok(mut sim) = Transverse::new(&v, 0.0) else {
             continue;
         };
         let mut ok = true;
         for _ in 0..SETTLE {
-            ok &= scene.do_step(period, &v).is_ok();
+            ok &= sim.do_step(period, &v).is_ok();
         }
-        let t0 = scene.time();
+        let t0 = sim.time();
         let mut traces: [Vec<(f64, f64)>; 3] = Default::default();
         for _ in 0..2 * samples {
-            ok &= scene.do_step(period / f64::from(samples), &v).is_ok();
-            let (ff, ffx, ffy, ..) = scene.forces();
-            let t = (scene.time() - t0) * 1e3;
+            ok &= sim.do_step(period / f64::from(samples), &v).is_ok();
+            let (ff, ffx, ffy, ..) = sim.forces();
+            let t = (sim.time() - t0) * 1e3;
             traces[0].push((t, ff));
             traces[1].push((t, ffx));
             traces[2].push((t, ffy));

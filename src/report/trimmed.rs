@@ -1,15 +1,15 @@
-//! Trimmed scenes against the full model: per case, the run time of the scene built for the full
-//! interface and of the one built for a scene file's interface (the parameters it fixes and the
+//! Trimmed models against the full ones: per case, the run time of the simulation built for the full
+//! interface and of the one built for a variant's interface (the parameters it fixes and the
 //! outputs it leaves out hidden), on the same values and solver settings, and how far the outputs
 //! the trimmed interface keeps differ between the two.
 //!
-//! Both scenes are built by the models' own builders (as the FMU does), stepped through the same
+//! Both simulations are built by the models' own builders (as the FMU does), stepped through the same
 //! communication points, their outputs written after every step as fmi2DoStep does.
 
-use crate::interface::values::ValueSet;
-use crate::interface::variable::{Causality, EnumType, ModelTable};
-use crate::interface::{longitudinal as il, oscillator as io, transverse as it};
-use crate::scenes::{self, Scope};
+use crate::models::{self, Scope};
+use crate::models::{longitudinal::table as il, oscillator::table as io, transverse::table as it};
+use crate::variables::values::ValueSet;
+use crate::variables::variable::{Causality, EnumType, ModelTable};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -17,10 +17,10 @@ use std::time::Instant;
 /// One comparison: a model at fixed values, run over `steps` communication steps of `step`.
 pub struct Case {
     pub title: &'static str,
-    /// What the trimmed scene leaves out of its run.
+    /// What the trimmed model leaves out of its run.
     pub skips: &'static str,
     pub values: ValueSet,
-    /// What the scene file fixes and leaves out, by value reference.
+    /// What the variant fixes and leaves out, by value reference.
     pub hidden: Vec<u32>,
     pub step: f64,
     pub steps: u32,
@@ -218,20 +218,20 @@ pub fn cases() -> Vec<Case> {
     ]
 }
 
-/// Runs `case` with the scene built for `scope`; the kept outputs after every step.
+/// Runs `case` with the simulation built for `scope`; the kept outputs after every step.
 fn run(case: &Case, scope: &Scope) -> Result<Trace, String> {
     let table = case.values.table;
-    let model = scenes::model(table.model_identifier)
+    let model = models::model(table.model_identifier)
         .ok_or_else(|| format!("no model {}", table.model_identifier))?;
     let mut values = case.values.clone();
     let kept: Vec<u32> = outputs(table)
         .filter(|vr| !case.hidden.contains(vr))
         .collect();
-    let mut scene = (model.build)(&values, 0.0, scope)?;
+    let mut sim = (model.build)(&values, 0.0, scope)?;
     let mut samples = Vec::with_capacity(kept.len() * case.steps as usize);
     for _ in 0..case.steps {
-        scene.do_step(case.step, &values)?;
-        scene.write_outputs(&mut values);
+        sim.do_step(case.step, &values)?;
+        sim.write_outputs(&mut values);
         samples.extend(kept.iter().map(|&vr| values.real(vr)));
     }
     Ok(Trace { kept, samples })
@@ -336,7 +336,7 @@ pub fn markdown(rows: &[Row]) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "| case | outputs kept | the trimmed scene skips | full (s) | trimmed (s) | speed-up | max rel. difference |"
+        "| case | outputs kept | the trimmed model skips | full (s) | trimmed (s) | speed-up | max rel. difference |"
     );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|");
     for r in rows {
@@ -354,7 +354,7 @@ pub fn markdown(rows: &[Row]) -> String {
     }
     let _ = writeln!(
         s,
-        "\nTime: CPU time of the thread for one run, median of {REPEATS} samples (each repeating the run for at least {SAMPLE_SECONDS} s) single-threaded, full and trimmed alternating. Difference: the largest |full - trimmed| of a kept output over every communication point, relative to that output's largest |value|.\n\nHidden by each case's scene file (fixed parameters and outputs left out):\n"
+        "\nTime: CPU time of the thread for one run, median of {REPEATS} samples (each repeating the run for at least {SAMPLE_SECONDS} s) single-threaded, full and trimmed alternating. Difference: the largest |full - trimmed| of a kept output over every communication point, relative to that output's largest |value|.\n\nHidden by each case's variant (fixed parameters and outputs left out):\n"
     );
     for r in rows {
         let _ = writeln!(s, "- {}: {}", r.title, r.hidden);
@@ -366,7 +366,7 @@ pub fn markdown(rows: &[Row]) -> String {
 pub fn write(out: &Path) -> Result<(PathBuf, String), String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let cases = cases();
-    let mut progress = super::progress::Progress::new("trimmed against full scenes", cases.len());
+    let mut progress = super::progress::Progress::new("trimmed against full models", cases.len());
     let mut rows = Vec::new();
     for case in cases {
         progress.draw(case.title);
@@ -375,7 +375,7 @@ pub fn write(out: &Path) -> Result<(PathBuf, String), String> {
     }
     progress.finish();
     let text = format!(
-        "# Trimmed scenes against the full model\n\n{}",
+        "# Trimmed models against the full ones\n\n{}",
         markdown(&rows)
     );
     let path = out.join("trimmed.md");

@@ -1,5 +1,5 @@
-//! General integrators behind one small trait. Scene-specific schemes (the paper's two-phase
-//! step, the exact bristle update) live with their scene.
+//! General integrators behind one small trait. Model-specific schemes (the paper's two-phase
+//! step, the exact bristle update) live with their model.
 //!
 //! Integrators keep their scratch space inline (systems have at most [`MAX_DIM`] states), so a
 //! doStep never allocates.
@@ -17,7 +17,7 @@ pub mod stiffness;
 #[cfg(test)]
 mod test_odes;
 
-/// The largest state vector any scene integrates (including quadrature states such as the
+/// The largest state vector any simulation integrates (including quadrature states such as the
 /// running integral of a force or of its power).
 pub const MAX_DIM: usize = 9;
 
@@ -69,7 +69,7 @@ pub trait Integrator {
 }
 
 /// The most steps (sub-steps of every kind, as counted in [`Work::steps`]) one communication
-/// step may take. Past it the scene stops with a message and the FMU returns fmi2Discard,
+/// step may take. Past it the simulation stops with a message and the FMU returns fmi2Discard,
 /// instead of running for minutes when the parameters (a microgram mass, a terahertz vibration)
 /// or a very long step ask for millions.
 pub const MAX_STEPS_PER_DO_STEP: u64 = 2_000_000;

@@ -1,5 +1,5 @@
 //! Classical fourth-order Runge-Kutta with a fixed step: the plain explicit reference method of
-//! the error-against-run-time tables (and the same-integrator checks of the transverse scene).
+//! the error-against-run-time tables (and the same-integrator checks of scene T).
 
 use super::{Integrator, Ode, Work, MAX_DIM};
 

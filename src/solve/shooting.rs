@@ -1,6 +1,6 @@
 //! The periodic orbit of a forced system: a fixed point of its one-period map P, found by
 //! Newton's method on P(y) - y (shooting), with the Jacobian from differences of P (the same
-//! solver, so the orbit is the one the scene then integrates) and Broyden's update after that.
+//! solver, so the orbit is the one the simulation then integrates) and Broyden's update after that.
 //!
 //! A transient approaches the orbit at the rate of the slowest Floquet multiplier, which for a
 //! lightly damped body is hundreds of periods to the tolerance; shooting costs one period per

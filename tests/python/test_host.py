@@ -1,4 +1,4 @@
-"""Every FMU (full and scene) through a plain C host (tests/host/fmu_host.c), as a tool vendor's
+"""Every FMU (full and variant) through a plain C host (tests/host/fmu_host.c), as a tool vendor's
 importer would load it: built with gcc and run natively on binaries/linux64, built with
 x86_64-w64-mingw32-gcc and run under wine on binaries/win64. Against fmpy's run of the same
 DefaultExperiment: bit for bit natively (the same library and maths), within 1e-8 of each
@@ -23,7 +23,7 @@ import pytest
 from conftest import FMU_DIR, ROOT
 
 HOST = ROOT / "tests" / "host"
-FMUS = sorted(FMU_DIR.glob("*.fmu")) + sorted((FMU_DIR / "scenes").glob("*.fmu"))
+FMUS = sorted(FMU_DIR.glob("*.fmu")) + sorted((FMU_DIR / "variants").glob("*.fmu"))
 WINE = shutil.which("wine")
 MINGW = shutil.which("x86_64-w64-mingw32-gcc")
 
@@ -106,9 +106,9 @@ def test_the_c_host_runs_the_default_experiment_as_fmpy_does(platform, fmu, host
             assert error <= 1e-8, f"{name}: {error:.1e} of its range"
 
 
-# A full FMU of each model and a scene FMU of each kind that reads a scene file.
+# A full FMU of each model and a variant FMU of each kind that reads a variant.
 UNLOADED = ["LongitudinalFriction", "TransverseFriction", "DryFrictionOscillator", "DriveTrain",
-            "scenes/Table1Dahl", "scenes/Fig8", "scenes/OscillatorFig1"]
+            "variants/Table1Dahl", "variants/Fig8", "variants/OscillatorFig1"]
 
 
 @pytest.mark.parametrize("fmu", UNLOADED)
@@ -132,14 +132,14 @@ def guid(fmu):
     return fmpy.read_model_description(str(fmu)).guid
 
 
-# (FMU, the FMU whose GUID it is given): a made-up GUID, another model's, and, for a scene FMU,
+# (FMU, the FMU whose GUID it is given): a made-up GUID, another model's, and, for a variant FMU,
 # its own full model's. Each library carries its FMU's model alone and accepts its GUID alone.
 WRONG_GUIDS = [
     ("TransverseFriction", None),
     ("LongitudinalFriction", "TransverseFriction"),
     ("DriveTrain", "DryFrictionOscillator"),
-    ("scenes/Fig8", "TransverseFriction"),
-    ("scenes/Table1Dahl", "scenes/Fig8"),
+    ("variants/Fig8", "TransverseFriction"),
+    ("variants/Table1Dahl", "variants/Fig8"),
 ]
 
 

@@ -275,7 +275,7 @@ def test_zero_where_a_positive_value_is_needed_is_refused(name):
 
 
 def test_inconsistent_parameters_are_refused_at_initialisation():
-    """A Dahl bristle needs FC = mu m g > 0; an underflowing product is caught when the scene is built."""
+    """A Dahl bristle needs FC = mu m g > 0; an underflowing product is caught when the model is built."""
     slave = Slave(MODEL)
     slave.fmu.setupExperiment()
     slave.set(m=1e-200, mu=1e-200)

@@ -1,18 +1,18 @@
-//! The cases: for each, our solvers through the scene (the step functions the FMU calls
+//! The cases: for each, our solvers through the simulation (the step functions the FMU calls
 //! in-process), the peers on the same right-hand sides, and the reference value.
 
 use crate::peers::{self, Outcome, Peer};
 use crate::problem::{self, Mode, Reading, Spec};
 use friction_fmu::friction::regularized::Regularized;
-use friction_fmu::interface::values::ValueSet;
-use friction_fmu::interface::variable::EnumType;
-use friction_fmu::interface::{longitudinal as il, oscillator as io, transverse as it};
-use friction_fmu::scenes::longitudinal::{Law, Longitudinal, Velocity};
-use friction_fmu::scenes::oscillator::{Equations, Forced, Oscillator};
-use friction_fmu::scenes::transverse::{
+use friction_fmu::variables::values::ValueSet;
+use friction_fmu::variables::variable::EnumType;
+use friction_fmu::models::{longitudinal::table as il, oscillator::table as io, transverse::table as it};
+use friction_fmu::models::longitudinal::{Law, Longitudinal, Velocity};
+use friction_fmu::models::oscillator::{Equations, Forced, Oscillator};
+use friction_fmu::models::transverse::{
     tolerance_scales, DriveVelocity, Equations as TransverseEquations, Transverse, COUPLED,
 };
-use friction_fmu::scenes::Scene;
+use friction_fmu::models::Simulation;
 use std::cell::Cell;
 use std::f64::consts::TAU;
 use std::rc::Rc;
@@ -148,28 +148,28 @@ fn transverse_values(slip_law: &str, kt_factor: f64, solver: &str, knob: Knob) -
     v
 }
 
-/// Ours: the scene from steady sliding, one communication step a period, FFx_mean at the end.
+/// Ours: the simulation from steady sliding, one communication step a period, FFx_mean at the end.
 fn transverse_ours(slip_law: &'static str, kt_factor: f64, solver: &'static str) -> Runner {
     Rc::new(move |knob| {
         let v = transverse_values(slip_law, kt_factor, solver, knob);
-        let mut scene = Transverse::new(&v, 0.0)?;
+        let mut sim = Transverse::new(&v, 0.0)?;
         let period = 1.0 / 3000.0;
         for i in 0..T_PERIODS {
-            let h = f64::from(i + 1) * period - scene.time();
-            scene.do_step(h, &v)?;
+            let h = f64::from(i + 1) * period - sim.time();
+            sim.do_step(h, &v)?;
         }
         Ok(Outcome {
-            value: scene.mean_ffx(),
-            rhs: scene.work.rhs_evaluations,
+            value: sim.mean_ffx(),
+            rhs: sim.work.rhs_evaluations,
         })
     })
 }
 
 pub fn transverse(slip_law: &'static str, kt_factor: f64, scipy: &[(f64, f64)]) -> Case {
     let values = transverse_values(slip_law, kt_factor, "dopri5", Knob::Tolerance(1e-8));
-    let scene = Transverse::new(&values, 0.0).expect("scene T");
+    let sim = Transverse::new(&values, 0.0).expect("scene T");
     let vd = values.real(it::vr::VD);
-    let p: &'static _ = Box::leak(Box::new(scene.p));
+    let p: &'static _ = Box::leak(Box::new(sim.p));
     let f = p.f;
     let drive = DriveVelocity {
         v0: vd,
@@ -178,13 +178,13 @@ pub fn transverse(slip_law: &'static str, kt_factor: f64, scipy: &[(f64, f64)]) 
     };
     let scales = tolerance_scales(p, vd);
     let mut scale = scales[..COUPLED].to_vec();
-    scale.push(scales[friction_fmu::scenes::transverse::Q]);
+    scale.push(scales[friction_fmu::models::transverse::Q]);
     let spec = Rc::new(Spec {
         problem: problem::Transverse {
             equations: TransverseEquations::new(p, drive, &[]),
         },
-        // The scene's saved state is [t, vd, vd', y..], y's first five the coupled states.
-        y0: scene.save()[3..3 + COUPLED].to_vec(),
+        // The simulation's saved state is [t, vd, vd', y..], y's first five the coupled states.
+        y0: sim.save()[3..3 + COUPLED].to_vec(),
         scale,
         t_read: f64::from(T_PERIODS - 1) / f,
         t_end: f64::from(T_PERIODS) / f,
@@ -281,30 +281,30 @@ fn longitudinal_values(solver: &str, knob: Knob) -> ValueSet {
 fn longitudinal_ours(solver: &'static str) -> Runner {
     Rc::new(move |knob| {
         let v = longitudinal_values(solver, knob);
-        let mut scene = Longitudinal::new(&v, 0.0)?;
-        let period = 1.0 / scene.f;
+        let mut sim = Longitudinal::new(&v, 0.0)?;
+        let period = 1.0 / sim.f;
         for i in 0..L_PERIODS {
-            let h = f64::from(i + 1) * period - scene.time();
-            scene.do_step(h, &v)?;
+            let h = f64::from(i + 1) * period - sim.time();
+            sim.do_step(h, &v)?;
         }
         Ok(Outcome {
-            value: scene.mean_force(),
-            rhs: scene.work.rhs_evaluations,
+            value: sim.mean_force(),
+            rhs: sim.work.rhs_evaluations,
         })
     })
 }
 
 pub fn longitudinal() -> Case {
     let values = longitudinal_values("dopri5", Knob::Tolerance(1e-8));
-    let scene = Longitudinal::new(&values, 0.0).expect("scene L");
-    let Law::Dahl(law) = scene.law else {
+    let sim = Longitudinal::new(&values, 0.0).expect("scene L");
+    let Law::Dahl(law) = sim.law else {
         panic!("Dahl law expected")
     };
-    let Velocity::Prescribed { vc, va } = scene.velocity else {
+    let Velocity::Prescribed { vc, va } = sim.velocity else {
         panic!("prescribed velocity expected")
     };
-    let f = scene.f;
-    // The scene's absolute-tolerance scales (src/scenes/longitudinal/ode.rs): the deflection,
+    let f = sim.f;
+    // The simulation's absolute-tolerance scales (src/models/longitudinal/ode.rs): the deflection,
     // FC/kt or the distance slid in a period if less, and the force integral over a period.
     let z_scale = (law.fc / law.kt).min((vc.abs() + va) / f);
     let spec = Rc::new(Spec {
@@ -385,15 +385,15 @@ fn oscillator_values(law: &str, solver: &str, knob: Knob) -> ValueSet {
 fn oscillator_ours(law: &'static str, solver: &'static str) -> Runner {
     Rc::new(move |knob| {
         let v = oscillator_values(law, solver, knob);
-        let mut scene = Oscillator::new(&v, 0.0)?;
+        let mut sim = Oscillator::new(&v, 0.0)?;
         let period = TAU / v.real(io::vr::W);
         for i in 0..O_PERIODS {
-            let h = f64::from(i + 1) * period - scene.time();
-            scene.do_step(h, &v)?;
+            let h = f64::from(i + 1) * period - sim.time();
+            sim.do_step(h, &v)?;
         }
         Ok(Outcome {
-            value: scene.amplitude(),
-            rhs: scene.work.rhs_evaluations,
+            value: sim.amplitude(),
+            rhs: sim.work.rhs_evaluations,
         })
     })
 }

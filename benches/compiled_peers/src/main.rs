@@ -4,7 +4,7 @@
 //!
 //! Peers: SUNDIALS CVODE (BDF and Adams, Debian's libsundials-dev), diffsol 0.18 (bdf and the
 //! SDIRK esdirk34) and ode_solvers 0.6 (Dopri5 and Dop853), all on the project's right-hand
-//! sides (src/problem.rs). Ours run through the scenes' step functions, as the FMUs run them.
+//! sides (src/problem.rs). Ours run through the models' step functions, as the FMUs run them.
 //! CPU time of the running thread; each setting's median of [`REPEATS`] runs, the settings of
 //! one case taken in turn in every round, so the machine's drift spreads over all of them.
 //!

@@ -8,8 +8,8 @@
 //! ours, whose integral restarts every period.
 
 use friction_fmu::friction::dahl::Dahl;
-use friction_fmu::scenes::oscillator::{Equations as OscillatorEquations, Forced};
-use friction_fmu::scenes::transverse::{Equations as TransverseEquations, COUPLED, DIM, Q};
+use friction_fmu::models::oscillator::{Equations as OscillatorEquations, Forced};
+use friction_fmu::models::transverse::{Equations as TransverseEquations, COUPLED, DIM, Q};
 use friction_fmu::solve::Ode;
 use std::cell::Cell;
 use std::f64::consts::TAU;
@@ -44,7 +44,7 @@ pub struct Spec<P: Problem> {
     pub reading: Reading,
 }
 
-/// Scene T's right-hand side ([`TransverseEquations`], the one the scene's solvers call) on
+/// Scene T's right-hand side ([`TransverseEquations`], the one the simulation's solvers call) on
 /// the five states it reads, [v_x, z_x, lambda, v_y, z_y], and the force integral q after them.
 pub struct Transverse {
     pub equations: TransverseEquations<'static>,
@@ -110,8 +110,8 @@ pub struct Mode(pub f64);
 
 /// Scene O's exact law as a peer must integrate it: `m u'' + c u' + k u = P sin(wt) - s h`
 /// while sliding (s = +-1), u' = 0 while stuck; the events are root functions: u' = 0 while
-/// sliding, F - k u = +-h while stuck. The equations of [`friction_fmu::scenes::oscillator::exact`],
-/// restated for a general integrator (the scene solves each phase in closed form).
+/// sliding, F - k u = +-h while stuck. The equations of [`friction_fmu::models::oscillator::exact`],
+/// restated for a general integrator (the simulation solves each phase in closed form).
 pub struct Switch {
     pub plant: Forced,
     pub h: f64,

@@ -3,13 +3,13 @@
 
 use friction_fmu::friction::lugre2d::SlipLaw;
 use friction_fmu::friction::regularized::Regularized;
-use friction_fmu::interface::transverse::{vr, TABLE};
-use friction_fmu::interface::values::ValueSet;
-use friction_fmu::scenes::oscillator::{Equations, Forced};
-use friction_fmu::scenes::transverse::{
+use friction_fmu::models::transverse::table::{vr, TABLE};
+use friction_fmu::variables::values::ValueSet;
+use friction_fmu::models::oscillator::{Equations, Forced};
+use friction_fmu::models::transverse::{
     tolerance_scales, Params, Transverse, COUPLED, DIM, LAMBDA, Q, VX, VY, W, X, Y, ZX, ZY,
 };
-use friction_fmu::scenes::Scene;
+use friction_fmu::models::Simulation;
 use friction_fmu::solve::dopri::{Switching, MAX_SWITCHES};
 use friction_fmu::solve::Ode;
 use std::f64::consts::PI;
@@ -91,8 +91,8 @@ pub fn oscillator(d: f64) -> Case {
 
 
 /// Scene T's ODE (paper T, continuous-time limit) for a prescribed drive velocity `vd`,
-/// built on the scene's public `Params::contact` and `Params::drive_force`; the scene's own
-/// `Equations` is private, so it is restated here and checked against the scene in `main`.
+/// built on the simulation's public `Params::contact` and `Params::drive_force`; the simulation's own
+/// `Equations` is private, so it is restated here and checked against the simulation in `main`.
 pub struct TransverseOde {
     pub p: Params,
     pub vd: f64,
@@ -121,7 +121,7 @@ impl Ode for TransverseOde {
     }
 }
 
-/// The kinks of the slip law (the scene's `Switching`): the edges of the Stribeck band
+/// The kinks of the slip law (the simulation's `Switching`): the edges of the Stribeck band
 /// |v1 + v2| < 4 vs, and v1 + v2 = 0 (total) or v1 = 0, v2 = 0 (split).
 impl Switching for TransverseOde {
     fn switches(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
@@ -144,7 +144,7 @@ impl Switching for TransverseOde {
     }
 }
 
-/// The scene's parameter set: defaults, kt x `kt_factor`, slip law `total`, solver radau5 at
+/// The simulation's parameter set: defaults, kt x `kt_factor`, slip law `total`, solver radau5 at
 /// `tolerance`, from rest or from steady sliding.
 pub fn transverse_values(kt_factor: f64, tolerance: f64, sliding: bool) -> ValueSet {
     let mut values = ValueSet::start(&TABLE);
@@ -161,13 +161,13 @@ pub fn transverse_values(kt_factor: f64, tolerance: f64, sliding: bool) -> Value
 /// Scene T at kt x `kt_factor`, restarting at every vibration period over `periods`.
 pub fn transverse(kt_factor: f64, periods: usize, sliding: bool) -> Case {
     let values = transverse_values(kt_factor, 1e-10, sliding);
-    let scene = Transverse::new(&values, 0.0).expect("scene T parameters");
-    let p = scene.p;
+    let sim = Transverse::new(&values, 0.0).expect("scene T parameters");
+    let p = sim.p;
     let vd = values.real(vr::VD);
-    // The scene's absolute-tolerance scales, with a finite one for the work.
+    // The simulation's absolute-tolerance scales, with a finite one for the work.
     let speed = vd.abs() + p.va + p.law.vs;
     let mut scale = tolerance_scales(&p, vd).to_vec();
-    scale[W] = scene.fc * speed / p.f;
+    scale[W] = sim.fc * speed / p.f;
     Case {
         name: format!(
             "scene T, slip law total, kt x {kt_factor}: 9 states, from {}, restart every period 1/{} s ({periods})",
@@ -176,8 +176,8 @@ pub fn transverse(kt_factor: f64, periods: usize, sliding: bool) -> Case {
         ),
         ode: Box::new(TransverseOde { p, vd }),
         switching: Some(Box::new(TransverseOde { p, vd })),
-        // The scene's saved state is [t, vd, vd', y..].
-        y0: scene.save()[3..3 + DIM].to_vec(),
+        // The simulation's saved state is [t, vd, vd', y..].
+        y0: sim.save()[3..3 + DIM].to_vec(),
         t0: 0.0,
         grid: grid(0.0, 1.0 / p.f, periods),
         scale,

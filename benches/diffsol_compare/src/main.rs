@@ -8,8 +8,8 @@ mod run;
 
 use cases::Case;
 use friction_fmu::cpu_clock::time_cpu;
-use friction_fmu::scenes::transverse::{self, Transverse};
-use friction_fmu::scenes::Scene;
+use friction_fmu::models::transverse::{self, Transverse};
+use friction_fmu::models::Simulation;
 use run::{run, Method, Run};
 
 const REPEATS: usize = 5;
@@ -183,18 +183,18 @@ fn compare(case: &Case, rtols: &[f64], atol_factor: f64, methods: &[Method]) {
 /// Scene T's own radau5 run against the restated ODE: the same equations if x agrees.
 fn check_transverse(kt_factor: f64, periods: usize) {
     let values = cases::transverse_values(kt_factor, 1e-10, true);
-    let mut scene = Transverse::new(&values, 0.0).expect("scene T");
-    let period = 1.0 / scene.p.f;
+    let mut sim = Transverse::new(&values, 0.0).expect("scene T");
+    let period = 1.0 / sim.p.f;
     for _ in 0..periods {
-        scene.do_step(period, &values).expect("scene T step");
+        sim.do_step(period, &values).expect("scene T step");
     }
     let case = cases::transverse(kt_factor, periods, true);
     let ours = run(&case, Method::Radau5Kinks, 1e-10, 1e-10).expect("restated ODE");
-    let x_scene = scene.position().0;
+    let x_ours = sim.position().0;
     let x_bench = ours.states.last().expect("states")[transverse::X];
     println!(
-        "check: scene T (kt x {kt_factor}) after {periods} periods, x = {x_scene:.12e} from the scene, {x_bench:.12e} from the restated ODE (relative difference {:.1e})",
-        ((x_scene - x_bench) / x_scene).abs()
+        "check: scene T (kt x {kt_factor}) after {periods} periods, x = {x_ours:.12e} from the simulation, {x_bench:.12e} from the restated ODE (relative difference {:.1e})",
+        ((x_ours - x_bench) / x_ours).abs()
     );
 }
 
@@ -221,7 +221,7 @@ fn main() {
         1.0,
         &all,
     );
-    // The scene's default experiment: 0.05 s, 150 periods at 3 kHz.
+    // The simulation's default experiment: 0.05 s, 150 periods at 3 kHz.
     check_transverse(1000.0, 5);
     let with_kinks = [
         Method::Radau5Warm,

@@ -18,7 +18,7 @@ pub struct Run {
 pub enum Method {
     /// Our radau5 with no memory across restarts (initial step guessed each time).
     Radau5Cold,
-    /// Our radau5 carrying its next step size across restarts, as the scenes do.
+    /// Our radau5 carrying its next step size across restarts, as the models do.
     Radau5Warm,
     /// Our radau5 (h carried) ending its steps on the kinks, as scene T runs it.
     Radau5Kinks,

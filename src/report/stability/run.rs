@@ -3,7 +3,7 @@
 use super::{Case, Value};
 use crate::fmi2::ffi::Status;
 use crate::importer::ImportedInstance;
-use crate::interface::variable::{Causality, Kind, ModelTable};
+use crate::variables::variable::{Causality, Kind, ModelTable};
 use std::time::Instant;
 
 /// fmi2StatusKind fmi2LastSuccessfulTime.
@@ -134,7 +134,7 @@ pub fn run(case: &Case) -> Row {
         w_diss: 0.0,
         seconds: 0.0,
     };
-    let Some(model) = crate::scenes::model(case.model) else {
+    let Some(model) = crate::models::model(case.model) else {
         row.outcome = Outcome::Refused;
         row.message = format!("no model {}", case.model);
         return row;

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Monolithic reference for the co-simulation of DriveTrain and TransverseFriction
-(examples/drive_coupling.py): ONE ODE holding the drive's and the friction scene's equations,
+(examples/drive_coupling.py): ONE ODE holding the drive's and the friction model's equations,
 solved with scipy's Radau IIA (order 5, L-stable) at rtol = 1e-11. An independent implementation
 (this file does not read the crate), so the coupled FMUs' error against it is the coupling error
 plus their own (far smaller) integration error.

@@ -1,0 +1,277 @@
+//! DriveTrain: a DC motor, a gear and a lead screw whose nut drives a load (the far end of
+//! TransverseFriction's drive spring).
+//!
+//! ```text
+//! L i'         = V - R i - ke omega
+//! J_eff omega' = kt_m i - b omega - r F_load / efficiency,   r = lead / (2 pi n)
+//! x_nut'       = r omega,   v_nut = r omega,   J_eff = J + m_nut r^2 / efficiency
+//! ```
+//!
+//! Linear with inputs that are held, or move linearly when the master gives their derivatives,
+//! over a step: so the state augmented with the inputs and their rates, `[i, omega, x_nut, V,
+//! F_load, V', F_load']`, obeys `z' = A z` with a constant A, and each step is exactly
+//! `z(t + h) = expm(A h) z(t)`: no step size to choose, no work limit to reach (one 7 x 7 matrix
+//! exponential per distinct step size). The motor is a source, so there is no passivity to
+//! check; the state is checked finite.
+
+use super::switch::{DriveSolver, Switch, VoltageSource};
+use super::{require_finite_start, require_non_negative, require_positive, Simulation};
+use crate::models::drive::table::{vr, TABLE};
+use crate::solve::expm::{expm, mul_vec, Matrix, Propagators};
+use crate::variables::values::ValueSet;
+use std::f64::consts::TAU;
+
+const DIM: usize = 7;
+const I: usize = 0;
+const OMEGA: usize = 1;
+const X: usize = 2;
+const VOLTAGE: usize = 3;
+const FORCE: usize = 4;
+const VOLTAGE_RATE: usize = 5;
+const FORCE_RATE: usize = 6;
+
+/// The motor, gear and screw, fixed at build time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Params {
+    pub resistance: f64,
+    pub inductance: f64,
+    pub kt: f64,
+    pub ke: f64,
+    /// Inertia at the motor shaft including the nut's mass reflected through gear and screw.
+    pub j_eff: f64,
+    pub b: f64,
+    /// Nut travel per motor radian, lead / (2 pi n).
+    pub r: f64,
+    pub efficiency: f64,
+    /// The constant armature voltage; None when it comes from V_in.
+    pub voltage: Option<f64>,
+}
+
+impl Params {
+    /// The matrix A of `z' = A z` for the augmented state (module comment).
+    fn system(&self) -> Matrix<DIM> {
+        let mut a = [[0.0; DIM]; DIM];
+        a[I][I] = -self.resistance / self.inductance;
+        a[I][OMEGA] = -self.ke / self.inductance;
+        a[I][VOLTAGE] = 1.0 / self.inductance;
+        a[OMEGA][I] = self.kt / self.j_eff;
+        a[OMEGA][OMEGA] = -self.b / self.j_eff;
+        a[OMEGA][FORCE] = -self.r / (self.efficiency * self.j_eff);
+        a[X][OMEGA] = self.r;
+        a[VOLTAGE][VOLTAGE_RATE] = 1.0;
+        a[FORCE][FORCE_RATE] = 1.0;
+        a
+    }
+
+    /// (i', omega') at current `i`, speed `omega`, voltage and load.
+    pub fn rates(&self, i: f64, omega: f64, voltage: f64, force: f64) -> (f64, f64) {
+        (
+            (voltage - self.resistance * i - self.ke * omega) / self.inductance,
+            (self.kt * i - self.b * omega - self.r * force / self.efficiency) / self.j_eff,
+        )
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Drive {
+    pub p: Params,
+    t: f64,
+    /// i, omega, x_nut.
+    y: [f64; 3],
+    /// V_in' and F_load' for the coming step (zero: held).
+    input_rates: [f64; 2],
+    /// expm(A h) of the last few step sizes h, reused while the master keeps its step.
+    propagators: Propagators<DIM>,
+}
+
+pub fn build(
+    values: &ValueSet,
+    start_time: f64,
+    _scope: &super::Scope,
+) -> Result<Box<dyn Simulation>, String> {
+    Ok(Box::new(Drive::new(values, start_time)?))
+}
+
+impl Drive {
+    pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, String> {
+        require_finite_start(start_time)?;
+        let resistance = require_positive(values, vr::R)?;
+        let inductance = require_positive(values, vr::L)?;
+        let kt = require_positive(values, vr::KT_M)?;
+        let ke = require_non_negative(values, vr::KE)?;
+        let j = require_positive(values, vr::J)?;
+        let b = require_non_negative(values, vr::B)?;
+        let n = require_positive(values, vr::N)?;
+        let efficiency = require_positive(values, vr::EFFICIENCY)?;
+        if efficiency > 1.0 {
+            return Err(format!(
+                "efficiency = {efficiency} is out of range: expected 0 < efficiency <= 1"
+            ));
+        }
+        let lead = require_positive(values, vr::LEAD)?;
+        let m_nut = require_non_negative(values, vr::M_NUT)?;
+        // One scheme: the matrix exponential (an unknown number is still refused).
+        let DriveSolver::Exponential = DriveSolver::read(values, vr::SOLVER)?;
+        let voltage = match VoltageSource::read(values, vr::VOLTAGE_SOURCE)? {
+            VoltageSource::Input => None,
+            VoltageSource::Parameter => Some(super::require_finite(values, vr::V)?),
+        };
+        let r = lead / (TAU * n);
+        let p = Params {
+            resistance,
+            inductance,
+            kt,
+            ke,
+            j_eff: j + m_nut * r * r / efficiency,
+            b,
+            r,
+            efficiency,
+            voltage,
+        };
+        if !p.r.is_finite() || !p.j_eff.is_finite() {
+            return Err(format!(
+                "lead / (2 pi n) = {} and J + m_nut r^2 / efficiency = {}: expected finite numbers",
+                p.r, p.j_eff
+            ));
+        }
+        Ok(Drive {
+            p,
+            t: start_time,
+            y: [0.0; 3],
+            input_rates: [0.0; 2],
+            propagators: Propagators::default(),
+        })
+    }
+
+    /// The armature voltage and the load now, from the inputs (or the voltage parameter).
+    fn inputs(&self, values: &ValueSet) -> Result<(f64, f64), String> {
+        let voltage = self.p.voltage.unwrap_or_else(|| values.real(vr::V_IN));
+        let force = values.real(vr::F_LOAD);
+        if !voltage.is_finite() || !force.is_finite() {
+            return Err(format!(
+                "V_in = {voltage} and F_load = {force}: expected finite numbers"
+            ));
+        }
+        Ok((voltage, force))
+    }
+
+    fn propagator(&mut self, h: f64) -> Result<Matrix<DIM>, String> {
+        let p = &self.p;
+        let phi = self.propagators.get(h, |h| {
+            let mut a = p.system();
+            for row in a.iter_mut() {
+                for x in row.iter_mut() {
+                    *x *= h;
+                }
+            }
+            expm(&a).map_err(|e| {
+                format!("{e}: the parameters put a coefficient of the drive's equations beyond f64")
+            })
+        })?;
+        Ok(*phi)
+    }
+}
+
+impl Simulation for Drive {
+    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String> {
+        // The rates apply to this step only (fmi2DoStep restores them with the rest of the
+        // state when the step fails).
+        let [voltage_rate, force_rate] = std::mem::take(&mut self.input_rates);
+        if !(h > 0.0 && h.is_finite()) {
+            return Err(format!("communication step {h} s: expected a step > 0"));
+        }
+        let (voltage, force) = self.inputs(values)?;
+        let phi = self.propagator(h)?;
+        let z = [
+            self.y[I],
+            self.y[OMEGA],
+            self.y[X],
+            voltage,
+            force,
+            if self.p.voltage.is_some() {
+                0.0
+            } else {
+                voltage_rate
+            },
+            force_rate,
+        ];
+        let z = mul_vec(&phi, &z);
+        if !z[..3].iter().all(|v| v.is_finite()) {
+            return Err(format!(
+                "the state became non-finite at t = {}: the inputs or their derivatives are too large, or R, L, kt_m, ke and J make the motor too fast to resolve in f64 over a step of {h} s",
+                self.t + h
+            ));
+        }
+        self.y.copy_from_slice(&z[..3]);
+        self.t += h;
+        Ok(())
+    }
+
+    fn write_outputs(&self, values: &mut ValueSet) {
+        values.set(vr::V_NUT, self.p.r * self.y[OMEGA]);
+        values.set(vr::X_NUT, self.y[X]);
+        values.set(vr::CURRENT, self.y[I]);
+        values.set(vr::OMEGA, self.y[OMEGA]);
+    }
+
+    fn time(&self) -> f64 {
+        self.t
+    }
+
+    fn save_into(&self, out: &mut Vec<f64>) {
+        // The input rates pending for the next step are state too: a master that rolls back
+        // and retakes the step need not set them again (FMI 2.0, 2.1.8).
+        let [voltage_rate, force_rate] = self.input_rates;
+        out.clear();
+        out.extend_from_slice(&[
+            self.t,
+            self.y[I],
+            self.y[OMEGA],
+            self.y[X],
+            voltage_rate,
+            force_rate,
+        ]);
+    }
+
+    fn restore(&mut self, state: &[f64]) -> Result<(), String> {
+        super::check_saved(TABLE.model_identifier, state, 6)?;
+        self.t = state[0];
+        self.y.copy_from_slice(&state[1..4]);
+        self.input_rates = [state[4], state[5]];
+        Ok(())
+    }
+
+    fn set_input_derivative(
+        &mut self,
+        value_reference: u32,
+        derivative: f64,
+    ) -> Result<(), String> {
+        match value_reference {
+            vr::V_IN => self.input_rates[0] = derivative,
+            vr::F_LOAD => self.input_rates[1] = derivative,
+            _ => return Err(format!("value reference {value_reference} is not an input")),
+        }
+        Ok(())
+    }
+
+    fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {
+        let (voltage, force) = self.inputs(values)?;
+        let (di, domega) = self.p.rates(self.y[I], self.y[OMEGA], voltage, force);
+        match value_reference {
+            vr::V_NUT => Ok(self.p.r * domega),
+            vr::X_NUT => Ok(self.p.r * self.y[OMEGA]),
+            vr::CURRENT => Ok(di),
+            vr::OMEGA => Ok(domega),
+            _ => Err(format!(
+                "value reference {value_reference} has no derivative here: expected an output"
+            )),
+        }
+    }
+}
+
+#[cfg(feature = "tools")]
+pub mod stability;
+pub mod table;
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,183 @@
+//! The solver menu of scene L. `exponential` is the simulation's own scheme (in the parent module);
+//! the others integrate the bristle ODE `z' = rate(z, vr(t))` together with the force integral
+//! `q' = FT(z, vr(t))` and the friction work `w' = FT vr` as quadrature states (same order as
+//! the solver), over sub-steps that never contain a sign change of vr.
+
+use super::Law;
+use crate::models::longitudinal::table::vr;
+use crate::models::switch::{LongitudinalSolver, Switch};
+use crate::solve::dopri::Dopri5;
+use crate::solve::radau::Radau5;
+use crate::solve::rk4::Rk4;
+use crate::solve::{Integrator, Ode, Work, MAX_DIM};
+use crate::variables::values::ValueSet;
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Solver {
+    Exponential,
+    /// One RK4 step per sub-step of at most `h_max`.
+    Rk4 {
+        h_max: f64,
+    },
+    Dopri5(Dopri5),
+    Radau5(Radau5),
+}
+
+/// The law as a function of time, under a moving normal force.
+pub type LoadedLaw<'a> = &'a dyn Fn(f64) -> Law;
+
+/// `(z, q, w)` with the velocity (and the law, under a moving normal force) as a function of
+/// time; the first `dim` of them.
+struct Bristle<'a> {
+    law: &'a Law,
+    velocity: &'a dyn Fn(f64) -> f64,
+    loaded: Option<LoadedLaw<'a>>,
+    dim: usize,
+}
+
+impl Ode for Bristle<'_> {
+    fn dim(&self) -> usize {
+        self.dim
+    }
+    /// q and w are quadratures: the right-hand side reads z alone.
+    fn coupled(&self) -> usize {
+        self.dim.min(1)
+    }
+    fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        let v = (self.velocity)(t);
+        let law = self.loaded.map(|loaded| loaded(t));
+        let (rate, force) = match law.as_ref().unwrap_or(self.law) {
+            // Coulomb has no state; the simulation integrates its force in closed form instead.
+            Law::Coulomb => (0.0, 0.0),
+            Law::Dahl(d) => (d.rate(y[0], v), d.force(y[0])),
+            Law::LuGre(l) => (l.rate(y[0], v), l.force(y[0], v)),
+        };
+        dydt[0] = rate;
+        if self.dim > 1 {
+            dydt[1] = force;
+        }
+        if self.dim > 2 {
+            dydt[2] = force * v;
+        }
+    }
+}
+
+impl Solver {
+    pub fn new(
+        values: &ValueSet,
+        law: Law,
+        fc: f64,
+        (f, steps_per_period): (f64, u32),
+        slip_per_period: f64,
+    ) -> Result<Self, String> {
+        let name = LongitudinalSolver::read(values, vr::SOLVER)?;
+        match name {
+            LongitudinalSolver::Exponential => return Ok(Solver::Exponential),
+            LongitudinalSolver::Rk4 => {
+                return Ok(Solver::Rk4 {
+                    h_max: 1.0 / (f * f64::from(steps_per_period)),
+                })
+            }
+            LongitudinalSolver::Dopri5 | LongitudinalSolver::Radau5 => {}
+        }
+        let rtol = values.real(vr::TOLERANCE);
+        if !(1e-14..=1e-2).contains(&rtol) {
+            return Err(format!(
+                "tolerance = {rtol} is out of range: expected 1e-14 <= tolerance <= 0.01"
+            ));
+        }
+        // Absolute tolerances on the scale of each state: the deflection, FC/kt at saturation or
+        // the distance slid in a period if that is less (a heavy body on a soft contact never
+        // nears saturation, and FC/kt would loosen the control by FC over the forces met), and
+        // the force integral over a period, the spring force of that deflection over 1/f.
+        let kt = match law {
+            Law::Dahl(d) => d.kt,
+            Law::LuGre(l) => l.sigma0,
+            Law::Coulomb => 1.0,
+        };
+        let z_scale = (fc / kt).min(slip_per_period);
+        let q_scale = match law {
+            Law::Coulomb => fc / f,
+            _ => kt * z_scale / f,
+        };
+        // The work w is left out of the error control (an infinite atol): the steps the
+        // deflection needs integrate it to the same order.
+        Ok(if name == LongitudinalSolver::Radau5 {
+            let mut radau = Radau5::new(rtol, rtol * z_scale.min(q_scale), 1.0 / f);
+            radau.atol_scale[2] = f64::INFINITY;
+            Solver::Radau5(radau)
+        } else {
+            let mut atol = [rtol * z_scale; MAX_DIM];
+            atol[1] = rtol * q_scale;
+            atol[2] = f64::INFINITY;
+            Solver::Dopri5(Dopri5::new(rtol, atol, 1.0 / f))
+        })
+    }
+
+    /// Sub-steps on a grid of 1/n period (the adaptive solvers choose their own steps).
+    pub fn fixed_step(&self) -> bool {
+        matches!(self, Solver::Exponential | Solver::Rk4 { .. })
+    }
+
+    /// The relative tolerance of an adaptive solver.
+    pub fn rtol(&self) -> Option<f64> {
+        match self {
+            Solver::Dopri5(d) => Some(d.rtol),
+            Solver::Radau5(r) => Some(r.rtol),
+            _ => None,
+        }
+    }
+
+    /// Where dopri5 found the problem stiff, once ([`Dopri5::stiff_since`]).
+    pub fn stiff_since(&mut self) -> Option<f64> {
+        match self {
+            Solver::Dopri5(d) => d.stiff_since(),
+            _ => None,
+        }
+    }
+
+    /// The step the adaptive solver would try next (part of the saved FMU state).
+    pub fn step_hint(&self) -> f64 {
+        match self {
+            Solver::Dopri5(d) => d.h,
+            Solver::Radau5(r) => r.h_next,
+            _ => 0.0,
+        }
+    }
+
+    pub fn set_step_hint(&mut self, h: f64) {
+        match self {
+            Solver::Dopri5(d) => d.h = h,
+            Solver::Radau5(r) => r.h_next = h,
+            _ => {}
+        }
+    }
+
+    /// Advances `z` over `[t0, t1]` (no sign change of vr inside); returns the integrals of the
+    /// force and of its power FT vr (0 for those beyond the first `dim` states).
+    pub fn advance(
+        &mut self,
+        (law, dim): (&Law, usize),
+        (velocity, loaded): (&dyn Fn(f64) -> f64, Option<LoadedLaw>),
+        t0: f64,
+        t1: f64,
+        z: &mut f64,
+        work: &mut Work,
+    ) -> Result<(f64, f64), String> {
+        let ode = Bristle {
+            law,
+            velocity,
+            loaded,
+            dim,
+        };
+        let mut y = [*z, 0.0, 0.0];
+        match self {
+            Solver::Exponential => return Err("exponential is not an ODE solver".into()),
+            Solver::Rk4 { h_max } => Rk4 { h_max: *h_max }.integrate(&ode, t0, t1, &mut y, work)?,
+            Solver::Dopri5(d) => d.integrate(&ode, t0, t1, &mut y, work)?,
+            Solver::Radau5(r) => r.integrate(&ode, t0, t1, &mut y, work)?,
+        }
+        *z = y[0];
+        Ok((y[1], y[2]))
+    }
+}

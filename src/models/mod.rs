@@ -1,0 +1,322 @@
+//! Models: one file and folder per model. A model's simulation owns its state, its equations and its outputs; it reads
+//! parameters and inputs from a [`ValueSet`] and knows nothing of FMI.
+
+pub mod drive;
+pub mod longitudinal;
+pub mod oscillator;
+pub mod period_mean;
+pub mod scope;
+#[cfg(feature = "tools")]
+pub mod stability;
+pub mod switch;
+pub mod transverse;
+
+use crate::variables::values::ValueSet;
+use crate::variables::variable::ModelTable;
+pub use scope::Scope;
+
+/// A model that can be advanced in time. Errors are messages for the user: what was wrong and
+/// what was expected.
+pub trait Simulation: Send {
+    /// Advances from the simulation's current time by `h > 0`, reading inputs from `values`.
+    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String>;
+
+    /// Writes every output variable into `values`, reading the inputs' current values there
+    /// (outputs with direct feedthrough follow an input set after the last step).
+    fn write_outputs(&self, values: &mut ValueSet);
+
+    /// The simulation's current time.
+    fn time(&self) -> f64;
+
+    /// Writes the dynamic state as numbers into `out`, replacing what it held (parameters
+    /// live in the [`ValueSet`]). Into a buffer the caller keeps: fmi2DoStep saves the state
+    /// before every step, to roll a failed step back, and allocates nothing.
+    fn save_into(&self, out: &mut Vec<f64>);
+
+    /// The dynamic state as numbers, in a new vector.
+    fn save(&self) -> Vec<f64> {
+        let mut state = Vec::new();
+        self.save_into(&mut state);
+        state
+    }
+
+    /// Restores a state written by [`Simulation::save`] of a simulation built from the same values.
+    fn restore(&mut self, state: &[f64]) -> Result<(), String>;
+
+    /// Takes the first time derivative of an input for the coming step only: the input then
+    /// moves as `value + derivative (t - t_step)` over it. Models that hold their inputs over
+    /// each step refuse (the default).
+    fn set_input_derivative(
+        &mut self,
+        value_reference: u32,
+        derivative: f64,
+    ) -> Result<(), String> {
+        let _ = (value_reference, derivative);
+        Err(HELD_INPUTS.to_string())
+    }
+
+    /// A warning the last step left for the user (logged, the step itself having succeeded):
+    /// once, then None. The default: none.
+    fn take_warning(&mut self) -> Option<String> {
+        None
+    }
+
+    /// The period the simulation's readings (means, amplitudes) are taken over and the relative
+    /// accuracy asked of them, for [`clock_warning`]; None for a simulation without such readings.
+    fn reading_period(&self) -> Option<(f64, f64)> {
+        None
+    }
+
+    /// The first time derivative of an output now, where it is exact and cheap (the inputs'
+    /// current values are in `values`); refuses the others (the default: all).
+    fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {
+        let _ = (value_reference, values);
+        Err("this model gives no output derivatives (maxOutputDerivativeOrder = 0)".to_string())
+    }
+}
+
+/// The warning of a simulation whose dopri5 found the problem stiff from `t` on
+/// ([`crate::solve::stiffness`]); `instead` names the solvers to use.
+fn stiff_warning(t: f64, instead: &str) -> String {
+    format!(
+        "solver dopri5 found the problem stiff from t = {t:e} s on: its steps are held by its stability, not by the tolerance, so the run is slow (though accurate); {instead} takes far fewer steps here"
+    )
+}
+
+/// Far from t = 0 a double resolves time only to about ulp(t), and a master's communication
+/// points, and with them where a period's reading starts and ends, round by that much. Once that
+/// is more than `tolerance` of the `period`, the clock, not the solver, bounds the readings'
+/// accuracy: said once a run (None while it is not so).
+pub fn clock_warning(t: f64, (period, tolerance): (f64, f64)) -> Option<String> {
+    let resolution = f64::EPSILON * t.abs();
+    (resolution > tolerance * period).then(|| {
+        format!(
+            "at t = {t:e} s a double resolves time to {resolution:.1e} s, {:.1e} of the {period:e} s period the readings are taken over and more than the tolerance {tolerance:e}: means and amplitudes are now accurate to about that fraction only; start the experiment nearer t = 0",
+            resolution / period
+        )
+    })
+}
+
+/// Whether `[start, end]` is a few ulps of the absolute time long: sub-step ends (a period's
+/// boundary, a kink) that met in the clock's round-off. Nothing happens over it that the clock
+/// resolves, and a solver counting time from the step's start would take it for a real interval.
+pub fn within_round_off(start: f64, end: f64) -> bool {
+    end - start <= 16.0 * f64::EPSILON * start.abs().max(end.abs())
+}
+
+/// The accuracy a fixed-step solver's period readings are held to for [`clock_warning`] (it has
+/// no tolerance; its error is set by steps_per_period).
+pub const FIXED_STEP_ACCURACY: f64 = 1e-9;
+
+/// Why a simulation without input derivatives refuses one.
+pub const HELD_INPUTS: &str =
+    "this model holds its inputs over each step (canInterpolateInputs = false)";
+
+/// Builds a simulation at `start_time` from parameter values, refusing inconsistent ones; `scope` says
+/// what the interface hides, so the simulation may skip what nobody can see or change.
+pub type Builder =
+    fn(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Box<dyn Simulation>, String>;
+
+/// A model this crate exports, everything about it in one place: its interface (the variable
+/// table, with which switches select which inputs and its law and tolerance parameters), how to
+/// build it, and, for packing and the report, its documentation page and stability cases.
+pub struct Model {
+    pub table: &'static ModelTable,
+    pub build: Builder,
+    /// The model's page in the FMU's documentation/index.html, before its variables.
+    #[cfg(feature = "tools")]
+    pub documentation: &'static str,
+    #[cfg(feature = "tools")]
+    pub stability: stability::Cases,
+}
+
+// One constant per model, so that an FMU's library that names one links none of the others.
+pub const LONGITUDINAL: Model = Model {
+    table: &longitudinal::table::TABLE,
+    build: longitudinal::build,
+    #[cfg(feature = "tools")]
+    documentation: include_str!("longitudinal/documentation.html"),
+    #[cfg(feature = "tools")]
+    stability: longitudinal::stability::CASES,
+};
+pub const TRANSVERSE: Model = Model {
+    table: &transverse::table::TABLE,
+    build: transverse::build,
+    #[cfg(feature = "tools")]
+    documentation: include_str!("transverse/documentation.html"),
+    #[cfg(feature = "tools")]
+    stability: transverse::stability::CASES,
+};
+pub const OSCILLATOR: Model = Model {
+    table: &oscillator::table::TABLE,
+    build: oscillator::build,
+    #[cfg(feature = "tools")]
+    documentation: include_str!("oscillator/documentation.html"),
+    #[cfg(feature = "tools")]
+    stability: oscillator::stability::CASES,
+};
+pub const DRIVE: Model = Model {
+    table: &drive::table::TABLE,
+    build: drive::build,
+    #[cfg(feature = "tools")]
+    documentation: include_str!("drive/documentation.html"),
+    #[cfg(feature = "tools")]
+    stability: drive::stability::CASES,
+};
+
+/// The registry: adding a model is a line here (and its constant above).
+pub const MODELS: &[Model] = &[LONGITUDINAL, TRANSVERSE, OSCILLATOR, DRIVE];
+
+pub fn model(model_identifier: &str) -> Option<&'static Model> {
+    MODELS
+        .iter()
+        .find(|m| m.table.model_identifier == model_identifier)
+}
+
+/// A parameter value checked on its way into a simulation: `ok` says whether `x` is acceptable,
+/// `expected` is how the message says what would be (the setters check the tables' ranges already;
+/// these also guard values restored from FMU states and the models' own unit tests).
+fn require(
+    values: &ValueSet,
+    value_reference: u32,
+    ok: fn(f64) -> bool,
+    expected: &str,
+) -> Result<f64, String> {
+    let x = values.real(value_reference);
+    if ok(x) {
+        Ok(x)
+    } else {
+        let name = values
+            .table
+            .variable(value_reference)
+            .map_or("?", |v| v.name);
+        Err(format!(
+            "{name} = {x} is out of range: expected {}",
+            expected.replace("{name}", name)
+        ))
+    }
+}
+
+/// A strictly positive, finite parameter.
+pub fn require_positive(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
+    require(
+        values,
+        value_reference,
+        |x| x > 0.0 && x.is_finite(),
+        "{name} > 0",
+    )
+}
+
+/// A finite parameter >= 0.
+pub fn require_non_negative(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
+    require(
+        values,
+        value_reference,
+        |x| x >= 0.0 && x.is_finite(),
+        "{name} >= 0",
+    )
+}
+
+/// Errs unless the start time a simulation is built at is a finite number (the FMI layer checks it
+/// too; simulations are also built in-process).
+pub fn require_finite_start(start_time: f64) -> Result<(), String> {
+    if start_time.is_finite() {
+        Ok(())
+    } else {
+        Err(format!("start time {start_time} is not a finite number"))
+    }
+}
+
+/// Any finite value.
+pub fn require_finite(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
+    require(values, value_reference, f64::is_finite, "a finite number")
+}
+
+/// Errs unless a saved state (`Simulation::restore`'s input) has `expected` numbers, all finite.
+pub fn check_saved(model: &str, state: &[f64], expected: usize) -> Result<(), String> {
+    let bad = state.iter().filter(|x| !x.is_finite()).count();
+    if state.len() != expected {
+        Err(format!(
+            "a {model} state has {expected} numbers, got {}",
+            state.len()
+        ))
+    } else if bad > 0 {
+        Err(format!(
+            "a {model} state has {expected} finite numbers, got {bad} that are not"
+        ))
+    } else {
+        Ok(())
+    }
+}
+
+/// Errs when a contact has created energy: `dissipated` (the friction work minus `stored`, the
+/// energy in the deflection) is below zero by more than `tolerance` times the energies it is the
+/// difference of, plus `resolved`, the least energy the solver resolves (0 for a fixed step). A
+/// fixed step beyond the solver's stability bound shows here first, while the state is still
+/// finite but meaningless. The tolerance is far above the solvers' truncation error and far
+/// below what an unstable step produces.
+pub fn require_passive(
+    (dissipated, stored): (f64, f64),
+    tolerance: f64,
+    resolved: f64,
+    t: f64,
+    advice: &str,
+) -> Result<(), String> {
+    let scale = dissipated.abs() + stored.abs();
+    if dissipated.is_finite() && stored.is_finite() && dissipated >= -(tolerance * scale + resolved)
+    {
+        Ok(())
+    } else {
+        Err(format!(
+            "the contact created energy by t = {t} (dissipated {dissipated:e} J, stored {stored:e} J): the integration is unstable; {advice}"
+        ))
+    }
+}
+
+/// The least energy an adaptive solver at `rtol` resolves in a contact of stiffness `kt` that
+/// saturates at `fc`: its absolute tolerance on the deflection, rtol FC/kt, times the force at
+/// saturation. Below it the energies are round-off of the tolerance, not a sign of instability
+/// (scene L, Dahl at va 0.13 um/s: a contact at 1e-5 of FC/kt was read as creating energy).
+pub fn resolved_energy(rtol: f64, fc: f64, kt: f64) -> f64 {
+    rtol * fc * fc / kt
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Scope, MODELS};
+    use crate::variables::values::ValueSet;
+    use crate::variables::variable::Causality;
+
+    /// build.rs writes a modelDescription.xml and a GUID for each table it lists; every one is
+    /// a model here, and every model's table is there, in the same order.
+    #[test]
+    fn the_registry_lists_the_tables_build_rs_describes() {
+        let models: Vec<&str> = MODELS.iter().map(|m| m.table.model_identifier).collect();
+        let described: Vec<&str> = crate::fmi2::GUIDS.iter().map(|(id, _)| *id).collect();
+        assert_eq!(models, described);
+    }
+
+    /// What modelDescription.xml declares (canInterpolateInputs) is what the models do: every
+    /// input of an interpolating model takes a derivative, no input of another model does.
+    #[test]
+    fn models_take_input_derivatives_exactly_where_the_xml_says() {
+        for model in MODELS {
+            let values = ValueSet::start(model.table);
+            let mut sim = (model.build)(&values, 0.0, &Scope::full()).unwrap();
+            for input in model
+                .table
+                .variables
+                .iter()
+                .filter(|v| v.causality == Causality::Input)
+            {
+                assert_eq!(
+                    sim.set_input_derivative(input.value_reference, 1.0).is_ok(),
+                    model.table.interpolates_inputs,
+                    "{} {}",
+                    model.table.model_identifier,
+                    input.name
+                );
+            }
+        }
+    }
+}

@@ -1,0 +1,690 @@
+//! Scene O: a forced oscillator with dry friction, `m u'' + c u' + H(u') + k u = F(t)` (paper O,
+//! eq. 1), `F = P sin(w t)` or an input held over each communication step.
+//!
+//! Two cores share the parameters and the outputs:
+//! - the regularised laws (eq. 4-9) are a smooth-but-stiff ODE in `(u, u')` (slope h/D near
+//!   u' = 0), integrated by the L-stable Radau IIA method in sub-steps of at most one
+//!   `steps_per_period`-th of the forcing period;
+//! - the exact laws ([`exact`]) are the non-smooth switch model, solved in closed form phase by
+//!   phase with every stick/slip event located inside the communication step.
+//!
+//! `u_amplitude` is max |u| over the last complete forcing period `2 pi/w`, counted from the
+//! start time. The exact core meets every extreme of u as an event; the regularised core finds
+//! extremes inside a sub-step on the cubic Hermite interpolant of (u, u') at its ends.
+
+pub mod exact;
+mod solver;
+#[cfg(feature = "tools")]
+pub mod stability;
+pub mod table;
+
+use super::switch::{
+    ForceSource, OscillatorInitialState, OscillatorLaw, OscillatorSolver, Switch as _,
+};
+use super::{require_finite, require_non_negative, require_positive, Scope, Simulation};
+use crate::friction::regularized::{stiction_excess, Regularized};
+use crate::models::oscillator::table::{vr, TABLE};
+use crate::solve::{shooting, within_step_budget, Ode, Work};
+use crate::variables::values::ValueSet;
+use exact::{Event, Mode, State, Switch};
+use solver::Solver;
+use std::f64::consts::TAU;
+
+/// The linear oscillator `m u'' + c u' + k u = F(t)` and its forcing: what the regularised and
+/// the exact cores share.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Forced {
+    pub m: f64,
+    pub c: f64,
+    pub k: f64,
+    pub w: f64,
+    /// Sine amplitude; unused when `input`.
+    pub p: f64,
+    /// Whether the force is the input, held over each step.
+    pub input: bool,
+}
+
+impl Forced {
+    /// The excitation force at t (`held` is the input over the current step).
+    pub fn force(&self, t: f64, held: f64) -> f64 {
+        if self.input {
+            held
+        } else {
+            self.p * (self.w * t).sin()
+        }
+    }
+}
+
+/// The regularised equations of motion, `y = (u, u', W)` with W the friction work, the integral
+/// of H u' (a quadrature state, integrated to the solver's order; left out when W_diss is
+/// hidden).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Equations {
+    pub plant: Forced,
+    /// The input force held over the current step.
+    pub held: f64,
+    pub law: Regularized,
+    /// W is integrated (W_diss is read).
+    pub with_work: bool,
+}
+
+impl Equations {
+    /// rk4 blows up (through many steps of finite nonsense) where h times an eigenvalue of the
+    /// linear part `m u'' + (c + C) u' + k u` leaves its stability region, which lies within
+    /// |h lambda| < 3 (2.96 at most). C is the friction law's steepest slope, at u' = 0: it acts
+    /// only while |u'| < D, but a motion that sticks there, or crosses it in a step or two,
+    /// then gains energy at every step (the regression test
+    /// `rk4_refuses_a_step_the_friction_slope_makes_unstable` in `oscillator/tests.rs` holds
+    /// such a case).
+    pub fn require_rk4_stable(&self, h: f64) -> Result<(), String> {
+        let Forced { m, c, k, .. } = self.plant;
+        let slope = self.law.eval(0.0).1.max(0.0);
+        let damping = c + slope;
+        let disc = damping * damping - 4.0 * m * k;
+        let rate = if disc >= 0.0 {
+            (damping + disc.sqrt()) / (2.0 * m)
+        } else {
+            (k / m).sqrt()
+        };
+        if h * rate <= 3.0 {
+            Ok(())
+        } else {
+            Err(format!(
+                "rk4: the step {h:e} s is beyond its stability bound 3/{rate:e} s set by m, c, k and the friction slope {slope:e} N.s/m at u' = 0; use more steps_per_period (or the radau5 solver)"
+            ))
+        }
+    }
+
+    /// `(H, C, u'')` at (t, u, u').
+    pub fn evaluate(&self, t: f64, u: f64, v: f64) -> (f64, f64, f64) {
+        let (h, c) = self.law.eval(v);
+        let pl = &self.plant;
+        let a = (pl.force(t, self.held) - pl.c * v - h - pl.k * u) / pl.m;
+        (h, c, a)
+    }
+}
+
+impl Ode for Equations {
+    fn dim(&self) -> usize {
+        if self.with_work {
+            3
+        } else {
+            2
+        }
+    }
+    /// The work is a quadrature: the right-hand side reads (u, u') alone.
+    fn coupled(&self) -> usize {
+        2
+    }
+    fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        let (h, _, a) = self.evaluate(t, y[0], y[1]);
+        dydt[0] = y[1];
+        dydt[1] = a;
+        if self.with_work {
+            dydt[2] = h * y[1];
+        }
+    }
+}
+
+/// One per instance, built once: the sizes of the variants do not matter, and the regularised
+/// core, which every right-hand side evaluation reads, stays unboxed.
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug, PartialEq)]
+enum Core {
+    Exact(Box<Switch>),
+    Regularized(Equations, Solver),
+}
+
+/// max |u| over the last complete period; periods counted from the start with an integer index,
+/// as [`super::period_mean::PeriodMean`] does.
+#[derive(Clone, Debug, PartialEq)]
+struct PeriodMax {
+    start_time: f64,
+    period: f64,
+    completed: u64,
+    running: f64,
+    last: f64,
+}
+
+impl PeriodMax {
+    fn next_boundary(&self) -> f64 {
+        self.start_time + (self.completed + 1) as f64 * self.period
+    }
+
+    fn slack(&self, t: f64) -> f64 {
+        super::period_mean::slack(self.period, t)
+    }
+
+    /// Adds the largest |u| of a sub-interval ending at t_end (where |u| = `at_end`).
+    fn add(&mut self, largest: f64, t_end: f64, at_end: f64) {
+        self.running = self.running.max(largest);
+        if t_end >= self.next_boundary() - self.slack(t_end) {
+            self.last = self.running;
+            self.running = at_end;
+            self.completed += 1;
+        }
+    }
+
+    fn value(&self) -> f64 {
+        if self.completed > 0 {
+            self.last
+        } else {
+            self.running
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Oscillator {
+    core: Core,
+    state: State,
+    /// The input force held over the current step.
+    held: f64,
+    /// Longest sub-step of the regularised core.
+    max_substep: f64,
+    amplitude: PeriodMax,
+    /// u_amplitude is read: extremes of u located inside sub-steps, sub-steps cut at the
+    /// forcing period's boundaries.
+    pub tracks_amplitude: bool,
+    /// rtol: the accuracy the amplitude is asked to (see [`super::clock_warning`]).
+    reading_tolerance: f64,
+    /// Said at the first step: a law whose band is too narrow for any solver here.
+    unresolved: Option<String>,
+    pub work: Work,
+}
+
+/// The narrowest band (D or Da, m/s) where linear_stiction's amplitude still meets rtol in the
+/// paper's case (3.5e-7 of it off at 1e-9, whatever rtol; see the documentation page).
+const NARROWEST_LINEAR_STICTION: f64 = 1e-8;
+
+pub fn build(
+    values: &ValueSet,
+    start_time: f64,
+    scope: &Scope,
+) -> Result<Box<dyn Simulation>, String> {
+    Ok(Box::new(Oscillator::with_scope(values, start_time, scope)?))
+}
+
+impl Oscillator {
+    /// The full model.
+    pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, String> {
+        Oscillator::with_scope(values, start_time, &Scope::full())
+    }
+
+    /// The simulation for an interface that hides what `scope` lists.
+    pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
+        let mut sim = Oscillator::from_given(values, start_time, scope)?;
+        if OscillatorInitialState::read(values, vr::INITIAL)? == OscillatorInitialState::Periodic {
+            if ForceSource::read(values, vr::FORCE_SOURCE)? == ForceSource::Input {
+                return Err(
+                    "initial = periodic needs the force prescribed (force_source = prescribed): with an input force the motion has no period known at initialization"
+                        .into(),
+                );
+            }
+            if let Err(why) = sim.settle_on_orbit(values, scope) {
+                let notice = format!(
+                    "initial = periodic: {why}; the run starts from (u0, v0) instead and goes through the transient"
+                );
+                sim.unresolved = Some(match sim.unresolved.take() {
+                    Some(before) => format!("{before}; {notice}"),
+                    None => notice,
+                });
+            }
+        }
+        Ok(sim)
+    }
+
+    /// Replaces (u0, v0) by the periodic orbit's state at the start time, found by shooting on
+    /// the one-period map ([`crate::solve::shooting`]) with this simulation's law and solver, from a
+    /// period after (u0, v0). The periods it integrates count in [`Oscillator::work`].
+    fn settle_on_orbit(&mut self, values: &ValueSet, scope: &Scope) -> Result<(), String> {
+        let period = self.amplitude.period;
+        let start_time = self.state.t;
+        let rtol = values.real(vr::RTOL);
+        let at = |y: &[f64], tolerance: f64| {
+            let mut v = values.clone();
+            v.set(vr::U0, y[0]);
+            v.set(vr::V0, y[1]);
+            v.set(vr::RTOL, tolerance.max(rtol));
+            v
+        };
+        let mut work = Work::default();
+        let swing = std::cell::Cell::new(0.0_f64);
+        let mut map = |y: &[f64], tolerance: f64| {
+            let values = at(y, tolerance);
+            let mut sim = Oscillator::from_given(&values, start_time, scope)?;
+            let result = sim.do_step(period, &values);
+            work = work.plus(&sim.work);
+            result?;
+            swing.set(
+                swing
+                    .get()
+                    .max(sim.amplitude.running.max(sim.amplitude.last)),
+            );
+            Ok(vec![sim.state.u, sim.state.v])
+        };
+        let orbit = map(&[self.state.u, self.state.v], 1e-6).and_then(|guess| {
+            // The states' scale: the swing of that first period (the atol where it is still).
+            let u_scale = swing.get().max(values.real(vr::ATOL));
+            let w = values.real(vr::W);
+            let scale = [u_scale, u_scale * w];
+            shooting::periodic_orbit(&guess, (&scale, &[false, false]), rtol, &mut map)
+                .map_err(String::from)
+        });
+        self.work = self.work.plus(&work);
+        let orbit = orbit?;
+        let values = at(&orbit.state, rtol);
+        *self = Oscillator {
+            work: self.work,
+            unresolved: self.unresolved.take(),
+            ..Oscillator::from_given(&values, start_time, scope)?
+        };
+        Ok(())
+    }
+
+    /// The simulation at `start_time` from (u0, v0).
+    fn from_given(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
+        let m = require_positive(values, vr::M)?;
+        let c = require_non_negative(values, vr::C)?;
+        let k = require_non_negative(values, vr::K)?;
+        let p = require_non_negative(values, vr::P)?;
+        let w = require_positive(values, vr::W)?;
+        let h = require_non_negative(values, vr::H)?;
+        let d = require_positive(values, vr::D)?;
+        let da = require_non_negative(values, vr::DA)?;
+        let u0 = require_finite(values, vr::U0)?;
+        let v0 = require_finite(values, vr::V0)?;
+        let rtol = require_positive(values, vr::RTOL)?;
+        let atol = require_positive(values, vr::ATOL)?;
+        let steps = values.integer(vr::STEPS_PER_PERIOD);
+        if steps < 1 {
+            return Err(format!(
+                "steps_per_period = {steps} is out of range: expected steps_per_period >= 1"
+            ));
+        }
+        let steps = f64::from(steps);
+        let ha = stiction_excess(h, d, da);
+        if !ha.is_finite() {
+            return Err(format!(
+                "ha = h*Da/D = {ha} is not finite: expected Da/D of moderate size (h = {h}, D = {d}, Da = {da})"
+            ));
+        }
+        let plant = Forced {
+            m,
+            c,
+            k,
+            w,
+            p,
+            input: ForceSource::read(values, vr::FORCE_SOURCE)? == ForceSource::Input,
+        };
+        let held = require_finite(values, vr::P_IN)?;
+        let period = TAU / w;
+        let law = OscillatorLaw::read(values, vr::LAW)?;
+        let regularized = match law {
+            OscillatorLaw::Exact | OscillatorLaw::ExactStiction => None,
+            OscillatorLaw::Linear => Some(Regularized::Linear { h, d }),
+            OscillatorLaw::LinearStiction => Some(Regularized::LinearStiction { h, d, da }),
+            OscillatorLaw::Trigonometric => Some(Regularized::Trigonometric { h, d }),
+            OscillatorLaw::TrigonometricStiction => {
+                Some(Regularized::TrigonometricStiction { h, d, da })
+            }
+        };
+        let core = match regularized {
+            None => {
+                let hs = if law == OscillatorLaw::Exact {
+                    h
+                } else {
+                    h + ha
+                };
+                Core::Exact(Box::new(Switch::new(plant, (h, hs), steps)?))
+            }
+            Some(law) => {
+                let equations = Equations {
+                    plant,
+                    held,
+                    law,
+                    with_work: scope.exposes(vr::W_DISS),
+                };
+                let name = OscillatorSolver::read(values, vr::SOLVER)?;
+                Core::Regularized(equations, Solver::new(name, rtol, atol, period / steps))
+            }
+        };
+        let mode = match &core {
+            Core::Exact(switch) => switch.initial_mode(start_time, u0, v0, held),
+            Core::Regularized(..) => Mode::Sliding(1.0),
+        };
+        Ok(Oscillator {
+            core,
+            state: State {
+                t: start_time,
+                u: u0,
+                v: v0,
+                mode,
+                dissipated: 0.0,
+            },
+            held,
+            max_substep: period / steps,
+            amplitude: PeriodMax {
+                start_time,
+                period,
+                completed: 0,
+                running: u0.abs(),
+                last: u0.abs(),
+            },
+            tracks_amplitude: scope.exposes(vr::U_AMPLITUDE),
+            reading_tolerance: rtol,
+            unresolved: (law == OscillatorLaw::LinearStiction && d.min(da) < NARROWEST_LINEAR_STICTION).then(|| {
+                format!(
+                    "linear_stiction with D = {d:e} and Da = {da:e} m/s: its falling branch (slope -h/D) amplifies the solver's error across the band, and below {NARROWEST_LINEAR_STICTION:e} m/s the amplitude and W_diss are not accurate to the tolerance whatever rtol; trigonometric_stiction or exact_stiction resolve so narrow a band"
+                )
+            }),
+            work: Work::default(),
+        })
+    }
+
+    pub fn state(&self) -> State {
+        self.state
+    }
+
+    /// `(H, C, u'')` now, with the input force `held`.
+    pub fn friction(&self, held: f64) -> (f64, f64, f64) {
+        match &self.core {
+            Core::Exact(switch) => {
+                let (h, a) = switch.friction_and_acceleration(&self.state, held);
+                (h, 0.0, a)
+            }
+            Core::Regularized(equations, _) => {
+                let equations = Equations { held, ..*equations };
+                equations.evaluate(self.state.t, self.state.u, self.state.v)
+            }
+        }
+    }
+
+    pub fn amplitude(&self) -> f64 {
+        self.amplitude.value()
+    }
+
+    /// Advances to t_end (not past the next period boundary); returns the largest |u| met.
+    fn advance(
+        &mut self,
+        t_end: f64,
+        log: Option<&mut Vec<Event>>,
+        at_start: &Work,
+    ) -> Result<f64, String> {
+        let held = self.held;
+        match &mut self.core {
+            Core::Exact(switch) => switch.advance(
+                &mut self.state,
+                t_end,
+                held,
+                log,
+                (&mut self.work, at_start),
+            ),
+            Core::Regularized(equations, solver) => {
+                equations.held = held;
+                let tracks = self.tracks_amplitude;
+                let mut largest = self.state.u.abs();
+                while self.state.t < t_end {
+                    within_step_budget(&self.work, at_start, self.state.t)?;
+                    let t0 = self.state.t;
+                    // Far from t = 0 a sub-step can be lost to round-off (t0 + max == t0):
+                    // then the solver takes the rest at once rather than the loop stalling.
+                    let t1 = if t_end - t0 <= self.max_substep * (1.0 + 1e-9)
+                        || t0 + self.max_substep <= t0
+                    {
+                        t_end
+                    } else {
+                        t0 + self.max_substep
+                    };
+                    if let Solver::Rk4(_) = solver {
+                        equations.require_rk4_stable(t1 - t0)?;
+                    }
+                    let start = [self.state.u, self.state.v, self.state.dissipated];
+                    let probe = tracks.then(|| solver.clone());
+                    let mut y = start;
+                    solver.integrate(&*equations, t0, t1, &mut y, &mut self.work)?;
+                    if let Some(probe) = probe.filter(|_| start[1] * y[1] < 0.0) {
+                        let extreme =
+                            turning_point(equations, probe, (t0, start), (t1, y), &mut self.work)?;
+                        largest = largest.max(extreme.abs());
+                    }
+                    self.state.t = t1;
+                    self.state.u = y[0];
+                    self.state.v = y[1];
+                    self.state.dissipated = y[2];
+                    largest = largest.max(y[0].abs());
+                }
+                Ok(largest)
+            }
+        }
+    }
+
+    /// Like [`Simulation::do_step`], recording every stick/slip event of the exact core in `log`.
+    pub fn step_logged(
+        &mut self,
+        h: f64,
+        held: f64,
+        mut log: Option<&mut Vec<Event>>,
+    ) -> Result<(), String> {
+        if !(h > 0.0 && h.is_finite()) {
+            return Err(format!("communication step {h}: expected a step > 0"));
+        }
+        self.held = held;
+        let t_end = self.state.t + h;
+        let at_start = self.work;
+        while self.state.t < t_end {
+            within_step_budget(&self.work, &at_start, self.state.t)?;
+            let boundary = if self.tracks_amplitude {
+                self.amplitude.next_boundary()
+            } else {
+                f64::INFINITY
+            };
+            // A boundary within round-off of t_end closes its period at t_end (PeriodMax::add).
+            // A boundary at or before t (lost to round-off far from the start time) must not
+            // stall the loop.
+            let segment_end =
+                if boundary < t_end - self.amplitude.slack(t_end) && boundary > self.state.t {
+                    boundary
+                } else {
+                    t_end
+                };
+            let largest = self.advance(segment_end, log.as_deref_mut(), &at_start)?;
+            self.state.t = segment_end;
+            self.amplitude.add(largest, segment_end, self.state.u.abs());
+        }
+        self.state.t = t_end;
+        let (friction, _, a) = self.friction(self.held);
+        if [
+            self.state.u,
+            self.state.v,
+            friction,
+            a,
+            self.amplitude.value(),
+        ]
+        .iter()
+        .all(|x| x.is_finite())
+        {
+            Ok(())
+        } else {
+            Err(format!(
+                "the motion became non-finite at t = {t_end} (u = {}, u' = {})",
+                self.state.u, self.state.v
+            ))
+        }
+    }
+}
+
+/// u where u' changes sign inside the sub-step from `a` to `b`: u' is located by re-integrating
+/// (Illinois false position, each probe starting from the latest point before the sign change).
+/// An interpolant would not do: u'' jumps by 2h/m right there when D is small. u is flat at its
+/// extreme, so an error dv in u' there moves u by only about dv^2/(2|u''|).
+fn turning_point(
+    equations: &Equations,
+    solver: Solver,
+    (t0, y0): (f64, [f64; 3]),
+    (t1, y1): (f64, [f64; 3]),
+    work: &mut Work,
+) -> Result<f64, String> {
+    let atol = solver.atol();
+    let (mut lo, mut y_lo, mut solver_lo) = (t0, y0, solver);
+    let (mut hi, mut v_hi) = (t1, y1[1]);
+    let mut v_lo = y0[1];
+    let mut best = if y0[1].abs() < y1[1].abs() {
+        y0[0]
+    } else {
+        y1[0]
+    };
+    let mut side = 0;
+    for _ in 0..40 {
+        let t = (lo * v_hi - hi * v_lo) / (v_hi - v_lo);
+        if !(t > lo && t < hi) {
+            break;
+        }
+        let mut probe = solver_lo.clone();
+        let mut y = y_lo;
+        probe.integrate(equations, lo, t, &mut y, work)?;
+        best = y[0];
+        let slope = (v_hi - v_lo) / (hi - lo);
+        if y[1] * y[1] <= 0.2 * atol * slope.abs() || hi - lo <= 4.0 * f64::EPSILON * t.abs() {
+            break;
+        }
+        if (y[1] > 0.0) == (y_lo[1] > 0.0) {
+            (lo, y_lo, solver_lo) = (t, y, probe);
+            v_lo = y[1];
+            if side == -1 {
+                v_hi *= 0.5;
+            }
+            side = -1;
+        } else {
+            hi = t;
+            v_hi = y[1];
+            if side == 1 {
+                v_lo *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    Ok(best)
+}
+
+impl Simulation for Oscillator {
+    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String> {
+        let held = values.real(vr::P_IN);
+        self.step_logged(h, held, None)
+    }
+
+    fn write_outputs(&self, values: &mut ValueSet) {
+        // Direct feedthrough: a and H at t follow the input force set at t.
+        let held = values.real(vr::P_IN);
+        let (friction, slope, a) = self.friction(held);
+        values.set(vr::U, self.state.u);
+        values.set(vr::V, self.state.v);
+        values.set(vr::A, a);
+        values.set(vr::H_OUT, friction);
+        values.set(vr::C_OUT, slope);
+        values.set(vr::U_AMPLITUDE, self.amplitude.value());
+        values.set(vr::W_DISS, self.state.dissipated);
+    }
+
+    fn time(&self) -> f64 {
+        self.state.t
+    }
+
+    fn take_warning(&mut self) -> Option<String> {
+        if let Some(message) = self.unresolved.take() {
+            return Some(message);
+        }
+        let Core::Regularized(_, solver) = &mut self.core else {
+            return None;
+        };
+        let t = solver.stiff_since()?;
+        Some(super::stiff_warning(t, "radau5"))
+    }
+
+    fn reading_period(&self) -> Option<(f64, f64)> {
+        self.tracks_amplitude
+            .then_some((self.amplitude.period, self.reading_tolerance))
+    }
+
+    fn save_into(&self, out: &mut Vec<f64>) {
+        let step_hint = match &self.core {
+            Core::Regularized(_, solver) => solver.step_hint(),
+            Core::Exact(_) => 0.0,
+        };
+        out.clear();
+        out.extend_from_slice(&[
+            self.state.t,
+            self.state.u,
+            self.state.v,
+            self.state.mode.code(),
+            self.held,
+            self.amplitude.completed as f64,
+            self.amplitude.running,
+            self.amplitude.last,
+            step_hint,
+            self.state.dissipated,
+        ]);
+    }
+
+    fn restore(&mut self, state: &[f64]) -> Result<(), String> {
+        super::check_saved(TABLE.model_identifier, state, 10)?;
+        match Mode::from_code(state[3]) {
+            Some(mode) => {
+                self.state = State {
+                    t: state[0],
+                    u: state[1],
+                    v: state[2],
+                    mode,
+                    dissipated: state[9],
+                };
+                self.held = state[4];
+                self.amplitude.completed = state[5] as u64;
+                self.amplitude.running = state[6];
+                self.amplitude.last = state[7];
+                if let Core::Regularized(_, solver) = &mut self.core {
+                    solver.set_step_hint(state[8]);
+                }
+                Ok(())
+            }
+            None => Err(format!(
+                "a DryFrictionOscillator state has a mode of 0 or +-1, got {}",
+                state[3]
+            )),
+        }
+    }
+}
+
+/// Runs a simulation from rest for `periods` forcing periods in steps of 1/50 period and returns
+/// `u_amplitude` at the end: the steady amplitude once the free response has died out.
+pub fn steady_amplitude(values: &ValueSet, periods: u32) -> Result<f64, String> {
+    let mut sim = Oscillator::new(values, 0.0)?;
+    let step = sim.amplitude.period / 50.0;
+    for _ in 0..periods * 50 {
+        sim.do_step(step, values)?;
+    }
+    Ok(sim.amplitude())
+}
+
+/// `(t, u, u', H, C)` sampled `per_period` times a period over the last `shown` of `periods`.
+pub fn trajectory(
+    values: &ValueSet,
+    periods: u32,
+    shown: u32,
+    per_period: u32,
+) -> Result<Vec<[f64; 5]>, String> {
+    let mut sim = Oscillator::new(values, 0.0)?;
+    let step = sim.amplitude.period / f64::from(per_period);
+    let mut samples = Vec::new();
+    for i in 0..periods * per_period {
+        sim.do_step(step, values)?;
+        if i + 1 >= (periods - shown) * per_period {
+            let (friction, slope, _) = sim.friction(values.real(vr::P_IN));
+            let st = sim.state();
+            samples.push([st.t, st.u, st.v, friction, slope]);
+        }
+    }
+    Ok(samples)
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,106 @@
+//! The solver menu of scene O's regularised core: Radau IIA (L-stable, the default),
+//! Dormand-Prince 5(4) ending its steps on the kinks of H at |u'| = D (and D + Da, D + 2 Da with
+//! stiction), and fixed-step RK4.
+
+use super::Equations;
+use crate::friction::regularized::Regularized;
+use crate::models::switch::OscillatorSolver;
+use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
+use crate::solve::radau::Radau5;
+use crate::solve::rk4::Rk4;
+use crate::solve::{Integrator, Work, MAX_DIM};
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Solver {
+    Radau5(Radau5),
+    Dopri5(Dopri5),
+    Rk4(Rk4),
+}
+
+impl Solver {
+    /// `name` is the `solver` item; `h_max` the longest step (the fixed step of rk4).
+    /// The friction work, state 2, is left out of the error control (an infinite atol): the
+    /// steps the motion needs integrate it to the same order.
+    pub fn new(name: OscillatorSolver, rtol: f64, atol: f64, h_max: f64) -> Self {
+        match name {
+            OscillatorSolver::Dopri5 => {
+                let mut atols = [atol; MAX_DIM];
+                atols[2] = f64::INFINITY;
+                Solver::Dopri5(Dopri5::new(rtol, atols, h_max))
+            }
+            OscillatorSolver::Rk4 => Solver::Rk4(Rk4 { h_max }),
+            OscillatorSolver::Radau5 => {
+                let mut radau = Radau5::new(rtol, atol, h_max);
+                radau.atol_scale[2] = f64::INFINITY;
+                Solver::Radau5(radau)
+            }
+        }
+    }
+
+    pub fn atol(&self) -> f64 {
+        match self {
+            Solver::Radau5(r) => r.atol,
+            Solver::Dopri5(d) => d.atol[0],
+            // The turning-point search stops at this resolution of u'.
+            Solver::Rk4(_) => 1e-12,
+        }
+    }
+
+    /// Where dopri5 found the problem stiff, once ([`Dopri5::stiff_since`]).
+    pub fn stiff_since(&mut self) -> Option<f64> {
+        match self {
+            Solver::Dopri5(d) => d.stiff_since(),
+            _ => None,
+        }
+    }
+
+    /// The step the adaptive solver would try next (part of the saved FMU state).
+    pub fn step_hint(&self) -> f64 {
+        match self {
+            Solver::Radau5(r) => r.h_next,
+            Solver::Dopri5(d) => d.h,
+            Solver::Rk4(_) => 0.0,
+        }
+    }
+
+    pub fn set_step_hint(&mut self, h: f64) {
+        match self {
+            Solver::Radau5(r) => r.h_next = h,
+            Solver::Dopri5(d) => d.h = h,
+            Solver::Rk4(_) => {}
+        }
+    }
+
+    pub fn integrate(
+        &mut self,
+        equations: &Equations,
+        t0: f64,
+        t1: f64,
+        y: &mut [f64],
+        work: &mut Work,
+    ) -> Result<(), String> {
+        match self {
+            Solver::Radau5(r) => r.integrate_switched(equations, t0, t1, y, work),
+            Solver::Dopri5(d) => d.integrate_switched(equations, t0, t1, y, work),
+            Solver::Rk4(r) => r.integrate(equations, t0, t1, y, work),
+        }
+    }
+}
+
+impl Switching for Equations {
+    /// H has kinks in u' at +-D (+-(D + Da), +-(D + 2 Da) with stiction).
+    fn switches(&self, _t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
+        let v = y[1];
+        let edges = match self.law {
+            Regularized::Linear { d, .. } | Regularized::Trigonometric { d, .. } => [d, d, d],
+            Regularized::LinearStiction { d, da, .. }
+            | Regularized::TrigonometricStiction { d, da, .. } => [d, d + da, d + 2.0 * da],
+        };
+        let count = if edges[0] == edges[2] { 1 } else { 3 };
+        for (i, e) in edges[..count].iter().enumerate() {
+            out[2 * i] = v - e;
+            out[2 * i + 1] = v + e;
+        }
+        2 * count
+    }
+}

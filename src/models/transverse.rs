@@ -1,0 +1,1090 @@
+//! Scene T: a body pulled over a support vibrating across the sliding direction, with a 2D LuGre
+//! contact (paper T).
+//!
+//! State `[x, x', z_x, lambda, w, q, y, y', z_y]`: body position and velocity, the bristle
+//! `z = N - M`, the drive stretch `lambda = vd t - x` (a state of its own so Fd does not lose
+//! digits to `vd t - x` in long runs), `q`, the integral of FFx since the last sub-step
+//! boundary, which feeds [`PeriodMean`], and `w`, the work done on the contact since the start
+//! (its power is FF e.(v_body - v_M) = FF (v1 + v2)), which gives the dissipated energy. The
+//! planar part comes last so a simulation without vibration ([`axial`]) integrates only the first
+//! five or six states, the others staying 0.
+//! Sub-steps end on communication points and vibration period boundaries (those only when
+//! FFx_mean is read, [`Trim`]); the continuous-time
+//! solvers integrate the continuous-time ODE, `two_phase` runs the paper's own scheme on the same
+//! state, `exponential` ([`exponential`]) the exact bristle update around a midpoint step of the
+//! body, for stiff contacts.
+
+mod axial;
+mod exponential;
+#[cfg(feature = "tools")]
+pub mod stability;
+pub mod table;
+mod two_phase;
+
+use super::period_mean::PeriodMean;
+use super::switch::{self, DriveSource, InitialState, Switch, TransverseSolver};
+use super::{
+    require_finite, require_finite_start, require_non_negative, require_passive, require_positive,
+    resolved_energy, Scope, Simulation,
+};
+use crate::friction::lugre2d::{radial_rates, Contact, LuGre2d, SlipLaw};
+use crate::models::transverse::table::vr;
+use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
+use crate::solve::narrow::Narrow;
+use crate::solve::phase::{cos_turns, turns};
+use crate::solve::radau::Radau5;
+use crate::solve::rk4::Rk4;
+use crate::solve::shooting::{self, NoOrbit};
+use crate::solve::{within_step_budget, Integrator, Ode, Work, MAX_DIM};
+use crate::variables::values::ValueSet;
+use nalgebra::Vector2;
+use std::cell::Cell;
+use std::f64::consts::TAU;
+
+// The state: first what the right-hand side reads (the body's velocity, the drive spring, the
+// bristle), then the quadratures ([`Ode::coupled`]). The 1D equations ([`axial`]) use the same
+// places, with the y axis at rest. Public for code that restates the equations (the solver
+// comparison in benches/diffsol_compare).
+pub const DIM: usize = 9;
+pub const VX: usize = 0;
+pub const ZX: usize = 1;
+pub const LAMBDA: usize = 2;
+pub const VY: usize = 3;
+pub const ZY: usize = 4;
+/// The states the planar right-hand side reads.
+pub const COUPLED: usize = ZY + 1;
+/// The states the 1D right-hand side ([`axial`]) reads.
+const COUPLED_AXIAL: usize = LAMBDA + 1;
+pub const X: usize = 5;
+pub const W: usize = 6;
+pub const Q: usize = 7;
+pub const Y: usize = 8;
+
+/// Half-width of the band |v1 + v2| < BAND vs where ht and g vary; dopri5 ends steps on its
+/// edges and moves v1 + v2 by at most vs a step inside it ([`crate::solve::narrow`]), so the
+/// damping pulse there (tens of ns wide at the paper's values) is never stepped over.
+/// exp(-BAND^2) ~ 1e-7 outside.
+const BAND: f64 = 4.0;
+
+/// Where else, in multiples of vs, steps end inside the Stribeck band of a rate whose absolute
+/// value has a kink (v1 and v2 for the split law, v1 + v2 for the total law), when the
+/// tolerance asks for it ([`band_points`]). Inside the band g(v) rises to FS over a time of
+/// about vs / |v'| (a tenth of a microsecond at the paper's values), and the slip |v|/g(v) has
+/// a bump there that steps ending only on v = 0 span: the stages miss the bump and so does the
+/// error estimate, which leaves the split law an error floor in FFx_mean whatever the
+/// tolerance. Ends at 3 vs lower the floor, ends at vs and 3 vs let the error follow the
+/// tolerance, ends at 2 vs do not help (measured with benches/transverse.py: see
+/// docs/performance.md, "Benchmarks" and "Measurements behind the code").
+const BAND_POINTS_COARSE: [f64; 1] = [3.0];
+/// The band's step ends for the tightest tolerances: at vs too.
+const BAND_POINTS_FINE: [f64; 2] = [1.0, 3.0];
+
+/// The tolerance at and below which dopri5 ends steps at [`BAND_POINTS_COARSE`]. Above it the
+/// unresolved bump is within the tolerance and the step ends would only cost right-hand sides;
+/// at it they are what meets the tolerance (split law, the benchmark's case: errors and
+/// costs with and without them in docs/performance.md, "Measurements behind the code").
+const DOPRI5_COARSE_BAND_RTOL: f64 = 3e-7;
+
+/// The tolerance at and below which dopri5 ends steps at [`BAND_POINTS_FINE`] instead: there
+/// the coarse ends' error floor is no longer well inside the tolerance. Above it the coarse
+/// ends cost fewer right-hand sides and fewer kinks to foresee for about the fine ends' error,
+/// at the paper's larger amplitudes too (docs/performance.md, "Measurements behind the code").
+const DOPRI5_FINE_BAND_RTOL: f64 = 1e-7;
+
+/// radau5 ends steps at [`BAND_POINTS_FINE`] from this tolerance down: above it radau5 meets
+/// the tolerance without them, and they would only cost it right-hand sides
+/// (docs/performance.md, "Measurements behind the code").
+const RADAU5_FINE_BAND_RTOL: f64 = 1e-7;
+
+/// The points inside the Stribeck band where `solver` ends steps: set by the tolerance for the
+/// adaptive solvers, none for the others.
+fn band_points(solver: &Solver) -> &'static [f64] {
+    match solver {
+        Solver::Dopri5(d) if d.rtol <= DOPRI5_FINE_BAND_RTOL => &BAND_POINTS_FINE,
+        Solver::Dopri5(d) if d.rtol <= DOPRI5_COARSE_BAND_RTOL => &BAND_POINTS_COARSE,
+        Solver::Radau5(r) if r.rtol <= RADAU5_FINE_BAND_RTOL => &BAND_POINTS_FINE,
+        _ => &[],
+    }
+}
+
+/// The damping band's coordinate (the rate in units of vs) read off its edges, switches 0 and
+/// 1 of both the plane and the axial equations: the narrow feature dopri5 and radau5 watch.
+#[inline]
+fn band_coordinate(sw: &[f64; MAX_SWITCHES], vs: f64) -> Narrow {
+    Narrow {
+        r: 0.5 * (sw[0] + sw[1]) / vs,
+        band: BAND,
+    }
+}
+
+/// Writes, from `out[k]`, the switching functions of a rate `v` whose absolute value has a
+/// kink: v itself and v -+ m vs for the band's `points` ([`band_points`]). Returns the next
+/// free index.
+#[inline]
+fn kink_switches(
+    v: f64,
+    vs: f64,
+    points: &[f64],
+    out: &mut [f64; MAX_SWITCHES],
+    k: usize,
+) -> usize {
+    out[k] = v;
+    let mut k = k + 1;
+    for &m in points {
+        out[k] = v - m * vs;
+        out[k + 1] = v + m * vs;
+        k += 2;
+    }
+    k
+}
+
+/// Everything the equations need, fixed at build time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Params {
+    pub law: LuGre2d,
+    pub slip: SlipLaw,
+    pub m: f64,
+    pub kd: f64,
+    pub hd: f64,
+    pub eta: f64,
+    pub va: f64,
+    pub f: f64,
+    /// Body held at x = y = 0 (Fig. 4b).
+    pub held: bool,
+    /// The support's phase, in turns, at the simulation's current time. The equations run on the
+    /// time since then, so that neither the forcing's phase nor the solvers' steps lose digits
+    /// to a large start time.
+    pub phase0: f64,
+}
+
+impl Params {
+    /// The velocity of the contact point M carried by the support: eta * (0, yp'), `t` after
+    /// the simulation's current time (as every time these equations take).
+    #[inline]
+    pub fn support_velocity(&self, t: f64) -> Vector2<f64> {
+        Vector2::new(
+            0.0,
+            self.eta * self.va * cos_turns(self.phase0 + t * self.f),
+        )
+    }
+
+    /// Support displacement yp = u0 sin(wt), u0 = va/w.
+    pub fn support_position(&self, t: f64) -> f64 {
+        self.va / (TAU * self.f) * (TAU * (self.phase0 + t * self.f).fract()).sin()
+    }
+
+    /// Moves the time origin of the equations to the absolute time `t`.
+    fn set_time(&mut self, t: f64) {
+        self.phase0 = turns(t, self.f);
+    }
+
+    #[inline]
+    fn body_velocity(&self, y: &[f64]) -> Vector2<f64> {
+        if self.held {
+            Vector2::zeros()
+        } else {
+            Vector2::new(y[VX], y[VY])
+        }
+    }
+
+    /// The angular frequency of the body on the stuck contact and the drive, sqrt((kt + kd)/m):
+    /// the fastest motion an explicit step of the mechanics must resolve (none when held).
+    pub fn sticking_frequency(&self) -> f64 {
+        if self.held {
+            0.0
+        } else {
+            ((self.law.kt + self.kd) / self.m).sqrt()
+        }
+    }
+
+    #[inline]
+    pub fn contact(&self, t: f64, y: &[f64]) -> Contact {
+        self.contact_moving(y, self.support_velocity(t))
+    }
+
+    /// The contact with the support point moving at `v_m`.
+    #[inline]
+    fn contact_moving(&self, y: &[f64], v_m: Vector2<f64>) -> Contact {
+        self.law.contact(
+            self.slip,
+            Vector2::new(y[ZX], y[ZY]),
+            self.body_velocity(y),
+            v_m,
+        )
+    }
+
+    /// The radial rates (v1, v2) alone, for the switching functions, with the support point
+    /// moving at `v_m`.
+    #[inline]
+    fn radial_rates(&self, y: &[f64], v_m: Vector2<f64>) -> (f64, f64) {
+        let (_, v1, v2) = radial_rates(Vector2::new(y[ZX], y[ZY]), self.body_velocity(y), v_m);
+        (v1, v2)
+    }
+
+    pub fn drive_force(&self, y: &[f64], vd: f64) -> f64 {
+        let vx = if self.held { 0.0 } else { y[VX] };
+        self.kd * y[LAMBDA] + self.hd * (vd - vx)
+    }
+}
+
+/// Absolute tolerances on the scale of each state, per unit of rtol: the deflection FC/kt, the
+/// velocities in play (drive velocity `vd`), a period's worth of the force integral. The work is
+/// left out of the error control (infinite): the steps the motion needs integrate it to the same
+/// order. The force integral stays in it also when the mean is not read (q stays in the planar
+/// state): its error control keeps the force as accurate as in the full model (ten times less
+/// without, at rtol 1e-9 in stick-slip at 3 kHz).
+pub fn tolerance_scales(p: &Params, vd: f64) -> [f64; MAX_DIM] {
+    let law = &p.law;
+    let z0 = law.fc / law.kt;
+    let speed = vd.abs() + p.va + law.vs;
+    let mut scale = [0.0; MAX_DIM];
+    scale[X] = z0;
+    scale[VX] = speed;
+    scale[Y] = z0;
+    scale[VY] = speed;
+    scale[ZX] = z0;
+    scale[ZY] = z0;
+    scale[LAMBDA] = if p.kd > 0.0 { law.fc / p.kd } else { z0 };
+    scale[Q] = law.fc / p.f;
+    scale[W] = f64::INFINITY;
+    scale
+}
+
+/// The drive velocity over a communication step from `t0`: held at `v0`, or moving at `rate`
+/// when the master gave the input's derivative for the step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DriveVelocity {
+    pub v0: f64,
+    pub rate: f64,
+    pub t0: f64,
+}
+
+impl DriveVelocity {
+    pub fn at(&self, t: f64) -> f64 {
+        self.v0 + self.rate * (t - self.t0)
+    }
+}
+
+/// The continuous-time ODE with the drive velocity `vd(t)`.
+pub struct Equations<'a> {
+    p: &'a Params,
+    vd: DriveVelocity,
+    /// Where steps also end inside the Stribeck band ([`band_points`]).
+    band_points: &'static [f64],
+    /// The support velocity at the last time asked for: dopri5's last two stages and the
+    /// switching functions after them all fall on the step's end, and the cos is a fifth of a
+    /// right-hand side.
+    last_support: Cell<(f64, Vector2<f64>)>,
+}
+
+impl<'a> Equations<'a> {
+    pub fn new(p: &'a Params, vd: DriveVelocity, band_points: &'static [f64]) -> Self {
+        Equations {
+            p,
+            vd,
+            band_points,
+            // NaN: equal to no time.
+            last_support: Cell::new((f64::NAN, Vector2::zeros())),
+        }
+    }
+
+    /// `Params::support_velocity`, remembered for one time. Always inlined, with its cos: the
+    /// compiler leaves both as calls otherwise, which makes a step measurably dearer
+    /// (docs/performance.md, "Measurements behind the code").
+    #[inline(always)]
+    fn support_velocity(&self, t: f64) -> Vector2<f64> {
+        let (t_last, v_last) = self.last_support.get();
+        if t == t_last {
+            return v_last;
+        }
+        let v = self.p.support_velocity(t);
+        self.last_support.set((t, v));
+        v
+    }
+}
+
+impl Ode for Equations<'_> {
+    fn dim(&self) -> usize {
+        DIM
+    }
+
+    fn coupled(&self) -> usize {
+        COUPLED
+    }
+
+    #[inline]
+    fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        let p = self.p;
+        let c = p.contact_moving(y, self.support_velocity(t));
+        let vd = self.vd.at(t);
+        if p.held {
+            for j in [X, VX, Y, VY] {
+                dydt[j] = 0.0;
+            }
+            dydt[LAMBDA] = vd;
+        } else {
+            let fd = p.drive_force(y, vd);
+            // One division for both accelerations.
+            let inv_m = 1.0 / p.m;
+            dydt[X] = y[VX];
+            dydt[VX] = (fd - c.ffx()) * inv_m;
+            dydt[Y] = y[VY];
+            dydt[VY] = c.ffy() * inv_m;
+            dydt[LAMBDA] = vd - y[VX];
+        }
+        dydt[ZX] = c.zdot.x;
+        dydt[ZY] = c.zdot.y;
+        dydt[Q] = c.ffx();
+        dydt[W] = c.ff * (c.v1 + c.v2);
+    }
+}
+
+impl Switching for Equations<'_> {
+    #[inline]
+    fn switches(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
+        let (v1, v2) = self.p.radial_rates(y, self.support_velocity(t));
+        self.switches_of(v1, v2, out)
+    }
+
+    /// The bristle relaxes at the slip rate: z' = w - slip z.
+    #[inline]
+    fn switches_and_decay(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> (usize, f64) {
+        let (v1, v2) = self.p.radial_rates(y, self.support_velocity(t));
+        let slip = self.p.law.slip(self.p.slip, v1, v2);
+        (self.switches_of(v1, v2, out), slip)
+    }
+
+    fn decaying(&self) -> &[usize] {
+        &[ZX, ZY]
+    }
+
+    /// The total law's slip rate |v1 + v2| / g follows the vibration smoothly between its
+    /// kinks. Frozen at a step's middle rather than its start, it gives FFx_mean in the steady
+    /// vibration with less error for the same work (over a transient from the start it is
+    /// neither better nor worse). The split law's error is set by the Stribeck band's bump
+    /// instead, and there the middle costs more at equal error. Measured on the benchmark's
+    /// case: docs/performance.md, "Benchmarks" and "Measurements behind the code".
+    fn decay_follows_trend(&self) -> bool {
+        self.p.slip == SlipLaw::Total
+    }
+
+    /// v1 + v2 in units of vs, from the band's edges (`switches_of`): the damping's pulse
+    /// ht(v1 + v2) sdot. Where the body turns, v1 + v2 can also dip into the band and out again
+    /// between two step ends, which the edges alone do not see.
+    #[inline]
+    fn narrow(&self, sw: &[f64; MAX_SWITCHES]) -> Option<Narrow> {
+        Some(band_coordinate(sw, self.p.law.vs))
+    }
+}
+
+impl Equations<'_> {
+    #[inline]
+    fn switches_of(&self, v1: f64, v2: f64, out: &mut [f64; MAX_SWITCHES]) -> usize {
+        let vr = v1 + v2;
+        let vs = self.p.law.vs;
+        let band = BAND * vs;
+        out[0] = vr - band;
+        out[1] = vr + band;
+        let points = self.band_points;
+        match self.p.slip {
+            // |v1| and |v2| have kinks.
+            SlipLaw::Split => {
+                let k = kink_switches(v1, vs, points, out, 2);
+                kink_switches(v2, vs, points, out, k)
+            }
+            SlipLaw::Total => kink_switches(vr, vs, points, out, 2),
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Solver {
+    Dopri5(Dopri5),
+    Radau5(Radau5),
+    Rk4 { steps_per_period: u32 },
+    TwoPhase(two_phase::TwoPhase),
+    Exponential(exponential::Exponential),
+}
+
+impl Solver {
+    /// The relative tolerance of an adaptive solver.
+    fn rtol(&self) -> Option<f64> {
+        match self {
+            Solver::Dopri5(d) => Some(d.rtol),
+            Solver::Radau5(r) => Some(r.rtol),
+            _ => None,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Drive {
+    Prescribed(f64),
+    Input,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Transverse {
+    pub p: Params,
+    pub drive: Drive,
+    pub solver: Solver,
+    /// Coulomb force FC = mu m g, the scale of the outputs.
+    pub fc: f64,
+    start_time: f64,
+    t: f64,
+    y: [f64; MAX_DIM],
+    /// The drive velocity held over the current step (input source).
+    vd_held: f64,
+    /// vd_in's derivative for the coming step only (zero: held).
+    vd_rate: f64,
+    mean: PeriodMean,
+    pub work: Work,
+    /// What the scope lets the simulation skip.
+    pub trim: Trim,
+    /// A warning for the first step (why the periodic start fell back to the transient).
+    notice: Option<String>,
+}
+
+/// The general model's parts a trimmed scope lets go (none for the full model, which keeps one
+/// general path to check the trimmed ones against). The work w stays even with W_diss hidden:
+/// it feeds the passivity check that stops unstable fixed steps, and leaving it out of dopri5's
+/// 1D state gained nothing beyond the timing noise on the Fig. 4a case (docs/performance.md,
+/// "Measurements behind the code").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Trim {
+    /// No vibration reaches the contact (va or eta fixed at 0): the 1D equations of [`axial`].
+    pub axial: bool,
+    /// FFx_mean is read: the force integral q and sub-steps that end on period boundaries.
+    pub mean: bool,
+}
+
+impl Trim {
+    fn of(scope: &Scope, values: &ValueSet, solver: TransverseSolver) -> Self {
+        let still = |vref: u32| scope.fixes(vref) && values.real(vref) == 0.0;
+        Trim {
+            // The paper's two-phase step is written in the plane; it stays as the paper has it.
+            axial: (still(vr::VA) || still(vr::ETA)) && solver != TransverseSolver::TwoPhase,
+            mean: scope.exposes(vr::FFX_MEAN),
+        }
+    }
+
+    /// How many entries of the state the solver integrates.
+    pub fn dim(&self) -> usize {
+        match (self.axial, self.mean) {
+            (false, _) => DIM,
+            (true, true) => Q + 1,
+            (true, false) => Q,
+        }
+    }
+}
+
+pub fn build(
+    values: &ValueSet,
+    start_time: f64,
+    scope: &Scope,
+) -> Result<Box<dyn Simulation>, String> {
+    Ok(Box::new(Transverse::with_scope(values, start_time, scope)?))
+}
+
+impl Transverse {
+    /// The full model.
+    pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, String> {
+        Transverse::with_scope(values, start_time, &Scope::full())
+    }
+
+    /// The simulation for an interface that hides what `scope` lists.
+    pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
+        let mut sim = Transverse::starting_from(values, start_time, scope, None)?;
+        if InitialState::read(values, vr::INITIAL)? == InitialState::Periodic {
+            if sim.drive == Drive::Input || sim.p.held {
+                return Err(
+                    "initial = periodic needs the body free and the drive prescribed (body = free, drive_source = prescribed): with an input drive the motion has no period known at initialization"
+                        .into(),
+                );
+            }
+            if let Err(no_orbit) = sim.settle_on_orbit(values, scope) {
+                let start = if no_orbit.nearest.is_some() {
+                    "the state nearest to closing the period"
+                } else {
+                    "steady sliding instead"
+                };
+                sim.notice = Some(format!(
+                    "initial = periodic: {}; the run starts from {start} and goes through the transient",
+                    no_orbit.why
+                ));
+            }
+        }
+        Ok(sim)
+    }
+
+    /// The states the right-hand side reads, which make the motion's state.
+    fn coupled(&self) -> usize {
+        if self.trim.axial {
+            COUPLED_AXIAL
+        } else {
+            COUPLED
+        }
+    }
+
+    /// Replaces the initial state by the periodic orbit's at the start time, found by shooting
+    /// on the one-period map ([`crate::solve::shooting`]) with this simulation's solver, from steady
+    /// sliding; where shooting stalls short of the tolerance, by the state nearest to closing
+    /// the period. The periods it integrates count in [`Transverse::work`].
+    fn settle_on_orbit(&mut self, values: &ValueSet, scope: &Scope) -> Result<(), NoOrbit> {
+        let n = self.coupled();
+        let period = 1.0 / self.p.f;
+        let start_time = self.t;
+        let mut work = Work::default();
+        // The guess: a period from steady sliding, which settles the bristle, with the drive
+        // stretched to pull the mean friction force of that period (the vibration lowers it
+        // from FC), which the body's slow motion would take many periods to find.
+        let rtol = values.real(vr::TOLERANCE);
+        // The maps' values: the run's, with the tolerance the shooting asks of each map (the
+        // fixed-step solvers take their own steps whatever it is).
+        let at = |tolerance: f64| {
+            let mut v = values.clone();
+            v.set(vr::TOLERANCE, tolerance.max(rtol));
+            v
+        };
+        let coarse = at(1e-6);
+        let mut first = Transverse::starting_from(&coarse, start_time, scope, Some(&self.y[..n]))?;
+        let settled = first.do_step(period, &coarse);
+        work = work.plus(&first.work);
+        settled?;
+        let mut guess = first.y[..n].to_vec();
+        if self.p.kd > 0.0 {
+            guess[LAMBDA] = first.mean_ffx() / self.p.kd;
+        }
+        let mut map = |y0: &[f64], tolerance: f64| {
+            let values = at(tolerance);
+            let mut sim = Transverse::starting_from(&values, start_time, scope, Some(y0))?;
+            let result = sim.do_step(period, &values);
+            work = work.plus(&sim.work);
+            result?;
+            Ok(sim.y[..n].to_vec())
+        };
+        let scale = tolerance_scales(&self.p, self.vd());
+        let settling: Vec<bool> = (0..n).map(|j| j == ZX || j == ZY).collect();
+        let orbit = shooting::periodic_orbit(&guess, (&scale[..n], &settling), rtol, &mut map);
+        self.work = self.work.plus(&work);
+        let start = match &orbit {
+            Ok(orbit) => orbit.state.clone(),
+            Err(NoOrbit {
+                nearest: Some(nearest),
+                ..
+            }) => nearest.clone(),
+            Err(_) => return orbit.map(|_| ()),
+        };
+        *self = Transverse {
+            work: self.work,
+            ..Transverse::starting_from(values, start_time, scope, Some(&start))?
+        };
+        orbit.map(|_| ())
+    }
+
+    /// The simulation at `start_time` from the initial state the values ask for, or, given, from
+    /// `motion` (the states the right-hand side reads).
+    fn starting_from(
+        values: &ValueSet,
+        start_time: f64,
+        scope: &Scope,
+        motion: Option<&[f64]>,
+    ) -> Result<Self, String> {
+        require_finite_start(start_time)?;
+        let m = require_positive(values, vr::M)?;
+        let mu = require_positive(values, vr::MU)?;
+        let g = require_positive(values, vr::G)?;
+        let fs_ratio = require_positive(values, vr::FS_RATIO)?;
+        let vs = require_positive(values, vr::VS)?;
+        let kt = require_positive(values, vr::KT)?;
+        let zeta = require_non_negative(values, vr::ZETA)?;
+        let hv = require_non_negative(values, vr::HV)?;
+        let kd = require_non_negative(values, vr::KD)?;
+        let hd = require_non_negative(values, vr::HD)?;
+        let eta = values.real(vr::ETA);
+        if !(0.0..=1.0).contains(&eta) {
+            return Err(format!(
+                "eta = {eta} is out of range: expected 0 <= eta <= 1"
+            ));
+        }
+        let va = require_non_negative(values, vr::VA)?;
+        let f = require_positive(values, vr::F)?;
+        let vd = require_finite(values, vr::VD)?;
+        let vd_in = values.real(vr::VD_IN);
+        let fc = mu * m * g;
+        let law = LuGre2d {
+            kt,
+            fc,
+            fs: fs_ratio * fc,
+            vs,
+            h0: 2.0 * zeta * (m * kt).sqrt(),
+            hv,
+        };
+        let slip = match switch::SlipLaw::read(values, vr::SLIP_LAW)? {
+            switch::SlipLaw::Total => SlipLaw::Total,
+            switch::SlipLaw::Split => SlipLaw::Split,
+        };
+        let held = switch::Body::read(values, vr::BODY)? == switch::Body::Held;
+        let p = Params {
+            law,
+            slip,
+            m,
+            kd,
+            hd,
+            eta,
+            va,
+            f,
+            held,
+            phase0: turns(start_time, f),
+        };
+        let drive = match DriveSource::read(values, vr::DRIVE_SOURCE)? {
+            DriveSource::Input => Drive::Input,
+            DriveSource::Prescribed => Drive::Prescribed(vd),
+        };
+        let vd_start = match drive {
+            Drive::Prescribed(v) => v,
+            Drive::Input => vd_in,
+        };
+        if !vd_start.is_finite() {
+            return Err(format!("vd_in = {vd_in} is not a finite number"));
+        }
+        let steps = values.integer(vr::STEPS_PER_PERIOD);
+        if steps < 1 {
+            return Err(format!(
+                "steps_per_period = {steps} is out of range: expected steps_per_period >= 1"
+            ));
+        }
+        let steps = steps as u32;
+        let rtol = values.real(vr::TOLERANCE);
+        if !(1e-14..=1e-2).contains(&rtol) {
+            return Err(format!(
+                "tolerance = {rtol} is out of range: expected 1e-14 <= tolerance <= 0.01"
+            ));
+        }
+
+        // Initial state.
+        let mut y = [0.0; MAX_DIM];
+        let sliding = InitialState::read(values, vr::INITIAL)? != InitialState::Rest;
+        if let Some(motion) = motion {
+            y[..motion.len()].copy_from_slice(motion);
+        } else if sliding && !held && vd_start != 0.0 {
+            y[VX] = vd_start;
+            y[LAMBDA] = if kd > 0.0 {
+                fc / kd * vd_start.signum()
+            } else {
+                0.0
+            };
+            y[ZX] = law.g(vd_start) * vd_start.signum();
+        }
+        // w counts from the energy stored at the start, so W_diss starts at 0 when the contact
+        // starts deflected.
+        y[W] = 0.5 * kt * (y[ZX] * y[ZX] + y[ZY] * y[ZY]);
+
+        let name = TransverseSolver::read(values, vr::SOLVER)?;
+        let trim = Trim::of(scope, values, name);
+        let solver = match name {
+            TransverseSolver::Rk4 => Solver::Rk4 {
+                steps_per_period: steps,
+            },
+            TransverseSolver::TwoPhase => {
+                Solver::TwoPhase(two_phase::TwoPhase::new(&p, start_time, &y, steps))
+            }
+            TransverseSolver::Exponential => Solver::Exponential(exponential::Exponential {
+                steps_per_period: steps,
+            }),
+            TransverseSolver::Dopri5 | TransverseSolver::Radau5 => {
+                let mut scale = tolerance_scales(&p, vd_start);
+                if trim.axial {
+                    // The 1D equations leave the y axis at rest: out of the error control, so
+                    // that its zeros do not dilute the others' errors.
+                    scale[VY] = f64::INFINITY;
+                    scale[ZY] = f64::INFINITY;
+                }
+                if name == TransverseSolver::Radau5 {
+                    let mut radau = Radau5::new(rtol, rtol, 0.05 / f);
+                    radau.atol_scale = scale;
+                    Solver::Radau5(radau)
+                } else {
+                    Solver::Dopri5(Dopri5::new(rtol, scale.map(|s| rtol * s), 0.05 / f))
+                }
+            }
+        };
+
+        Ok(Transverse {
+            p,
+            drive,
+            solver,
+            fc,
+            start_time,
+            t: start_time,
+            y,
+            vd_held: vd_start,
+            vd_rate: 0.0,
+            mean: PeriodMean::new(start_time, 1.0 / f),
+            work: Work::default(),
+            trim,
+            notice: None,
+        })
+    }
+
+    fn vd(&self) -> f64 {
+        match self.drive {
+            Drive::Prescribed(v) => v,
+            Drive::Input => self.vd_held,
+        }
+    }
+
+    pub fn time(&self) -> f64 {
+        self.t
+    }
+
+    /// FF, FFx, FFy, s, beta now.
+    pub fn forces(&self) -> (f64, f64, f64, f64, f64) {
+        match &self.solver {
+            Solver::TwoPhase(tp) => tp.forces(),
+            _ => {
+                let c = self.p.contact(0.0, &self.y);
+                (c.ff, c.ffx(), c.ffy(), c.s, c.beta())
+            }
+        }
+    }
+
+    pub fn mean_ffx(&self) -> f64 {
+        self.mean.value(self.t, self.forces().1)
+    }
+
+    pub fn position(&self) -> (f64, f64) {
+        (self.y[X], self.y[Y])
+    }
+
+    pub fn drive_force(&self) -> f64 {
+        self.p.drive_force(&self.y, self.vd())
+    }
+
+    /// The energy the contact has dissipated since the start: the work done on it minus the
+    /// energy kt s^2/2 stored in its deflection.
+    pub fn dissipated_energy(&self) -> f64 {
+        let s = self.forces().3;
+        self.y[W] - 0.5 * self.p.law.kt * s * s
+    }
+
+    /// Advances over one sub-step `[start, end]` that lies within one period; `origin` is the
+    /// absolute time the equations' time counts from (the step's start).
+    fn substep(
+        &mut self,
+        origin: f64,
+        (start, end): (f64, f64),
+        vd: DriveVelocity,
+    ) -> Result<(), String> {
+        let (t0, t1) = (start - origin, end - origin);
+        // Sub-step ends that met in the round-off of the absolute time (a period's boundary a
+        // few ulps from the master's point): one explicit step, as the adaptive solvers took
+        // there when they counted absolute time (counted from the step's start, they would take
+        // the interval for a real one and refine it).
+        let round_off = super::within_round_off(start, end);
+        self.y[Q] = 0.0;
+        let band_points = band_points(&self.solver);
+        let planar = Equations::new(&self.p, vd, band_points);
+        let axial = axial::Axial {
+            p: &self.p,
+            vd,
+            dim: self.trim.dim(),
+            band_points,
+        };
+        let eq: &dyn Switching = if self.trim.axial { &axial } else { &planar };
+        match &mut self.solver {
+            Solver::Dopri5(_) | Solver::Radau5(_) if round_off => {
+                let mut rk = Rk4 {
+                    h_max: f64::INFINITY,
+                };
+                rk.integrate(eq, t0, t1, &mut self.y, &mut self.work)?;
+            }
+            // On the equations' own types rather than through `eq`: the contact then inlines
+            // into the right-hand side, and the step takes fewer instructions
+            // (docs/performance.md, "Measurements behind the code").
+            Solver::Dopri5(d) if self.trim.axial => {
+                d.integrate_switched(&axial, t0, t1, &mut self.y, &mut self.work)?
+            }
+            Solver::Dopri5(d) => {
+                d.integrate_switched(&planar, t0, t1, &mut self.y, &mut self.work)?
+            }
+            Solver::Radau5(r) => r.integrate_switched(eq, t0, t1, &mut self.y, &mut self.work)?,
+            Solver::Rk4 { steps_per_period } => {
+                let mut rk = Rk4 {
+                    h_max: 1.0 / (self.p.f * f64::from(*steps_per_period)),
+                };
+                rk.integrate(eq, t0, t1, &mut self.y, &mut self.work)?;
+            }
+            Solver::TwoPhase(tp) => {
+                tp.advance(&self.p, vd, (origin, t0, t1), &mut self.y, &mut self.work)?;
+            }
+            Solver::Exponential(ex) => {
+                let stepper = exponential::Stepper {
+                    p: &self.p,
+                    eq,
+                    axial: self.trim.axial,
+                };
+                ex.advance(&stepper, t0, t1, &mut self.y, &mut self.work)?;
+            }
+        }
+        if self.trim.mean {
+            self.mean.add(self.y[Q], end);
+        }
+        Ok(())
+    }
+}
+
+impl Simulation for Transverse {
+    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String> {
+        if !(h > 0.0 && h.is_finite()) {
+            return Err(format!("communication step {h} s: expected a step > 0"));
+        }
+        // A derivative applies to this step only (fmi2DoStep restores it with the rest of the
+        // state when the step fails).
+        let rate = std::mem::take(&mut self.vd_rate);
+        if self.drive == Drive::Input {
+            let v = values.real(vr::VD_IN);
+            if !v.is_finite() {
+                return Err(format!("vd_in = {v} is not a finite number"));
+            }
+            self.vd_held = v;
+        }
+        let vd = DriveVelocity {
+            v0: self.vd(),
+            rate: if self.drive == Drive::Input {
+                rate
+            } else {
+                0.0
+            },
+            t0: 0.0,
+        };
+        let origin = self.t;
+        let t_end = self.t + h;
+        let mut t = self.t;
+        let at_start = self.work;
+        while t < t_end {
+            within_step_budget(&self.work, &at_start, t)?;
+            // Sub-steps end on period boundaries only for the mean (dopri5 and radau5 restart
+            // there, a step or two each).
+            let boundary = if self.trim.mean {
+                self.mean.next_boundary()
+            } else {
+                f64::INFINITY
+            };
+            // A boundary within round-off of t_end is t_end (the master's clock drifts).
+            let next = if boundary < t_end - self.mean.slack(t_end) {
+                boundary
+            } else {
+                t_end
+            };
+            let next = if next > t { next } else { t_end };
+            self.substep(origin, (t, next), vd)?;
+            t = next;
+        }
+        self.t = t_end;
+        self.p.set_time(t_end);
+        let (ff, _, _, s, _) = self.forces();
+        if self.y.iter().all(|v| v.is_finite()) && ff.is_finite() {
+            // The bristle damping ht (eq. 5) can return a little energy in transients, hence
+            // the looser tolerance than scene L's.
+            let kt = self.p.law.kt;
+            require_passive(
+                (self.dissipated_energy(), 0.5 * kt * s * s),
+                1e-3,
+                self.solver
+                    .rtol()
+                    .map_or(0.0, |rtol| resolved_energy(rtol, self.fc, kt)),
+                t_end,
+                "use more steps_per_period, or the dopri5 or radau5 solver",
+            )
+        } else {
+            Err(format!(
+                "the state became non-finite at t = {t_end}; choose a smaller step or the dopri5 solver"
+            ))
+        }
+    }
+
+    fn write_outputs(&self, values: &mut ValueSet) {
+        let (ff, ffx, ffy, s, beta) = self.forces();
+        // Direct feedthrough of the hd term: Fd at t follows vd_in set at t.
+        let vd = self.vd_now(values);
+        values.set(vr::FF, ff);
+        values.set(vr::FFX, ffx);
+        values.set(vr::FFY, ffy);
+        values.set(vr::FD, self.p.drive_force(&self.y, vd));
+        values.set(vr::FFX_MEAN, self.mean.value(self.t, ffx));
+        values.set(vr::X, self.y[X]);
+        values.set(vr::Y, self.y[Y]);
+        values.set(vr::S, s);
+        values.set(vr::BETA, beta);
+        values.set(vr::W_DISS, self.dissipated_energy());
+    }
+
+    fn time(&self) -> f64 {
+        self.t
+    }
+
+    fn take_warning(&mut self) -> Option<String> {
+        if let Some(notice) = self.notice.take() {
+            return Some(notice);
+        }
+        let Solver::Dopri5(d) = &mut self.solver else {
+            return None;
+        };
+        let t = d.stiff_since()?;
+        Some(super::stiff_warning(t, "radau5 or exponential"))
+    }
+
+    fn reading_period(&self) -> Option<(f64, f64)> {
+        Some((
+            1.0 / self.p.f,
+            self.solver.rtol().unwrap_or(super::FIXED_STEP_ACCURACY),
+        ))
+    }
+
+    fn save_into(&self, out: &mut Vec<f64>) {
+        // The pending rate of vd_in is state too (FMI 2.0, 2.1.8): see DriveTrain's.
+        out.clear();
+        out.extend_from_slice(&[self.t, self.vd_held, self.vd_rate]);
+        out.extend_from_slice(&self.y);
+        out.extend_from_slice(&self.mean.save());
+        match &self.solver {
+            Solver::Dopri5(d) => out.push(d.h),
+            Solver::Radau5(r) => out.push(r.h_next),
+            Solver::Rk4 { .. } | Solver::Exponential(_) => out.push(0.0),
+            Solver::TwoPhase(tp) => out.extend_from_slice(&tp.save()),
+        }
+    }
+
+    fn restore(&mut self, state: &[f64]) -> Result<(), String> {
+        let base = 3 + MAX_DIM + 3;
+        let extra = match &self.solver {
+            Solver::TwoPhase(_) => two_phase::SAVED,
+            _ => 1,
+        };
+        super::check_saved("TransverseFriction (with this solver)", state, base + extra)?;
+        self.t = state[0];
+        self.p.set_time(self.t);
+        self.vd_held = state[1];
+        self.vd_rate = state[2];
+        self.y.copy_from_slice(&state[3..3 + MAX_DIM]);
+        self.mean.restore(&state[3 + MAX_DIM..base]);
+        match &mut self.solver {
+            Solver::Dopri5(d) => d.h = state[base],
+            Solver::Radau5(r) => r.h_next = state[base],
+            Solver::Rk4 { .. } | Solver::Exponential(_) => {}
+            Solver::TwoPhase(tp) => tp.restore(&state[base..]),
+        }
+        Ok(())
+    }
+
+    fn set_input_derivative(
+        &mut self,
+        value_reference: u32,
+        derivative: f64,
+    ) -> Result<(), String> {
+        if value_reference != vr::VD_IN {
+            return Err(format!("value reference {value_reference} is not an input"));
+        }
+        // Kept when vd is prescribed too, and ignored there like vd_in itself.
+        self.vd_rate = derivative;
+        Ok(())
+    }
+
+    /// Every output's first derivative, from the continuous-time equations at the current
+    /// state (with the two-phase solver too): x', y' and Fd' = kd (vd - x') + hd (vd' - x'')
+    /// exactly; s', beta' and W_diss' exactly from the bristle rate z'; FFx_mean's as
+    /// [`PeriodMean::rate`]; FF, FFx and FFy, which need the bristle's second derivative, as a
+    /// centred difference along the solution ([`Transverse::force_rates`]).
+    fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {
+        let vd = self.drive_velocity_now(values);
+        let mut dydt = [0.0; MAX_DIM];
+        Equations::new(&self.p, vd, &[]).rhs(0.0, &self.y, &mut dydt);
+        let c = self.p.contact(0.0, &self.y);
+        let z = Vector2::new(self.y[ZX], self.y[ZY]);
+        // s' = e . z'; beta' from z = s (cos beta, -sin beta): beta' = -(z x z') / s^2 (0 on
+        // an undeflected bristle, whose direction is that of the slip).
+        let s_rate = c.e.dot(&c.zdot);
+        let beta_rate = if c.s > 0.0 {
+            -(z.x * c.zdot.y - z.y * c.zdot.x) / (c.s * c.s)
+        } else {
+            0.0
+        };
+        Ok(match value_reference {
+            vr::FD => self.p.kd * (vd.v0 - dydt[X]) + self.p.hd * (vd.rate - dydt[VX]),
+            vr::X => dydt[X],
+            vr::Y => dydt[Y],
+            vr::S => s_rate,
+            vr::BETA => beta_rate,
+            vr::W_DISS => dydt[W] - self.p.law.kt * c.s * s_rate,
+            vr::FF => self.force_rates(&dydt)[0],
+            vr::FFX => self.force_rates(&dydt)[1],
+            vr::FFY => self.force_rates(&dydt)[2],
+            vr::FFX_MEAN => {
+                let ffx = self.forces().1;
+                self.mean.rate(self.t, ffx, self.force_rates(&dydt)[1])
+            }
+            _ => {
+                return Err(format!(
+                    "value reference {value_reference} has no derivative here: expected an output"
+                ))
+            }
+        })
+    }
+}
+
+impl Transverse {
+    /// The drive velocity over the coming step as the outputs see it: vd_in's current value
+    /// and the rate set for the step when it is the source.
+    fn drive_velocity_now(&self, values: &ValueSet) -> DriveVelocity {
+        DriveVelocity {
+            v0: self.vd_now(values),
+            rate: if self.drive == Drive::Input {
+                self.vd_rate
+            } else {
+                0.0
+            },
+            t0: 0.0,
+        }
+    }
+
+    /// (FF, FFx, FFy)' as the centred difference of the forces at t +- eps along the
+    /// equations' tangent y +- eps y': the terms of second order in eps cancel, so the error
+    /// is of order (eps / T)^2 for the fastest time scale T met. eps is a millionth of the
+    /// vibration's 1/(2 pi f) and at most 1 ns (the equations' time counts from now, so any
+    /// eps is resolved): at 3 kHz, 53 ps, so (eps / T)^2 is 1e-12 in steady sliding and 3e-7 in
+    /// the Stribeck band, which the paper's values cross in about 100 ns.
+    fn force_rates(&self, dydt: &[f64; MAX_DIM]) -> [f64; 3] {
+        let eps = (1e-6 / (TAU * self.p.f)).min(1e-9);
+        let forces_at = |tau: f64| {
+            let mut y = [0.0; MAX_DIM];
+            for ((y, y0), d) in y.iter_mut().zip(&self.y).zip(dydt) {
+                *y = y0 + tau * d;
+            }
+            let c = self.p.contact(tau, &y);
+            [c.ff, c.ffx(), c.ffy()]
+        };
+        let (plus, minus) = (forces_at(eps), forces_at(-eps));
+        [0, 1, 2].map(|k| (plus[k] - minus[k]) / (2.0 * eps))
+    }
+
+    /// vd as the outputs see it: vd_in's current value when it is the source (Fd's hd term
+    /// follows an input set after the last step).
+    fn vd_now(&self, values: &ValueSet) -> f64 {
+        match self.drive {
+            Drive::Input if values.real(vr::VD_IN).is_finite() => values.real(vr::VD_IN),
+            _ => self.vd(),
+        }
+    }
+
+    /// The start time the simulation was built at.
+    pub fn start_time(&self) -> f64 {
+        self.start_time
+    }
+}
+
+#[cfg(test)]
+mod tests;
+
+#[cfg(test)]
+mod drive_input_tests;
