@@ -29,6 +29,7 @@ use super::switch::{
 use super::{require_passive, require_positive, resolved_energy, Scope, Simulation};
 use crate::friction::{coulomb, dahl::Dahl, lugre::LuGre, sgn};
 use crate::models::longitudinal::table::vr;
+use crate::solve::adaptive::Adaptive;
 use crate::solve::phase::turns;
 use crate::solve::shooting;
 use crate::solve::{within_step_budget, Work};
@@ -532,7 +533,7 @@ impl Longitudinal {
     /// saturation, `rtol FC/kt` in z, where the rate's slope is still bounded.
     fn saturation(&self, law: &Dahl, t0: f64, t1: f64) -> Option<(f64, f64)> {
         let s = sgn(self.sliding_direction(self.velocity_at(0.5 * (t0 + t1))));
-        let slack = self.solver.rtol().unwrap_or(0.0);
+        let slack = self.solver.adaptive().map(Adaptive::rtol).unwrap_or(0.0);
         let distance = law.distance_to_saturation(self.z, s, slack);
         if !distance.is_finite() || s == 0.0 {
             return None;
@@ -703,9 +704,9 @@ impl Simulation for Longitudinal {
             _ => require_passive(
                 (self.dissipated_energy(), self.stored_energy()),
                 1e-6,
-                self.solver
-                    .rtol()
-                    .map_or(0.0, |rtol| resolved_energy(rtol, self.fc, self.stiffness())),
+                self.solver.adaptive().map_or(0.0, |a| {
+                    resolved_energy(a.rtol(), self.fc, self.stiffness())
+                }),
                 t_end,
                 "use more steps_per_period, or the exponential solver (stable at any step)",
             ),
@@ -733,14 +734,17 @@ impl Simulation for Longitudinal {
         if let Some(notice) = self.notice.take() {
             return Some(notice);
         }
-        let t = self.solver.stiff_since()?;
+        let t = self.solver.adaptive_mut()?.stiff_since()?;
         Some(super::stiff_warning(t, "radau5 or exponential"))
     }
 
     fn reading_period(&self) -> Option<(f64, f64)> {
         Some((
             1.0 / self.f,
-            self.solver.rtol().unwrap_or(super::FIXED_STEP_ACCURACY),
+            self.solver
+                .adaptive()
+                .map(Adaptive::rtol)
+                .unwrap_or(super::FIXED_STEP_ACCURACY),
         ))
     }
 
@@ -750,7 +754,10 @@ impl Simulation for Longitudinal {
         out.clear();
         out.extend_from_slice(&[self.t, self.z, self.v_in.value, self.v_in.rate]);
         out.extend_from_slice(&self.mean.save());
-        out.extend_from_slice(&[self.solver.step_hint(), self.friction_work]);
+        out.extend_from_slice(&[
+            self.solver.adaptive().map_or(0.0, Adaptive::step_hint),
+            self.friction_work,
+        ]);
         if let (Some(load), Some(mean)) = (self.load, &self.fc_mean) {
             out.extend_from_slice(&[load.value, load.rate]);
             out.extend_from_slice(&mean.save());
@@ -772,7 +779,9 @@ impl Simulation for Longitudinal {
             rate: state[3],
         };
         self.mean.restore(&state[4..7]);
-        self.solver.set_step_hint(state[7]);
+        if let Some(a) = self.solver.adaptive_mut() {
+            a.set_step_hint(state[7]);
+        }
         self.friction_work = state[8];
         if let (Some(load), Some(mean)) = (self.load.as_mut(), self.fc_mean.as_mut()) {
             *load = Ramp {

@@ -24,6 +24,7 @@ use super::switch::{
 use super::{require_finite, require_non_negative, require_positive, Scope, Simulation};
 use crate::friction::regularized::{stiction_excess, Regularized};
 use crate::models::oscillator::table::{vr, TABLE};
+use crate::solve::adaptive::Adaptive;
 use crate::solve::{shooting, within_step_budget, Ode, Work};
 use crate::variables::values::ValueSet;
 use exact::{Event, Mode, State, Switch};
@@ -597,7 +598,7 @@ impl Simulation for Oscillator {
         let Core::Regularized(_, solver) = &mut self.core else {
             return None;
         };
-        let t = solver.stiff_since()?;
+        let t = solver.adaptive_mut()?.stiff_since()?;
         Some(super::stiff_warning(t, "radau5"))
     }
 
@@ -608,7 +609,7 @@ impl Simulation for Oscillator {
 
     fn save_into(&self, out: &mut Vec<f64>) {
         let step_hint = match &self.core {
-            Core::Regularized(_, solver) => solver.step_hint(),
+            Core::Regularized(_, solver) => solver.adaptive().map_or(0.0, Adaptive::step_hint),
             Core::Exact(_) => 0.0,
         };
         out.clear();
@@ -642,7 +643,9 @@ impl Simulation for Oscillator {
                 self.amplitude.running = state[6];
                 self.amplitude.last = state[7];
                 if let Core::Regularized(_, solver) = &mut self.core {
-                    solver.set_step_hint(state[8]);
+                    if let Some(a) = solver.adaptive_mut() {
+                        a.set_step_hint(state[8]);
+                    }
                 }
                 Ok(())
             }

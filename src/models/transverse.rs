@@ -29,6 +29,7 @@ use super::{
 };
 use crate::friction::lugre2d::{radial_rates, Contact, LuGre2d, SlipLaw};
 use crate::models::transverse::table::vr;
+use crate::solve::adaptive::Adaptive;
 use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
 use crate::solve::narrow::Narrow;
 use crate::solve::phase::{cos_turns, turns};
@@ -100,9 +101,15 @@ const RADAU5_FINE_BAND_RTOL: f64 = 1e-7;
 /// adaptive solvers, none for the others.
 fn band_points(solver: &Solver) -> &'static [f64] {
     match solver {
-        Solver::Dopri5(d) if d.rtol <= DOPRI5_FINE_BAND_RTOL => &BAND_POINTS_FINE,
-        Solver::Dopri5(d) if d.rtol <= DOPRI5_COARSE_BAND_RTOL => &BAND_POINTS_COARSE,
-        Solver::Radau5(r) if r.rtol <= RADAU5_FINE_BAND_RTOL => &BAND_POINTS_FINE,
+        Solver::Adaptive(Adaptive::Dopri5(d)) if d.rtol <= DOPRI5_FINE_BAND_RTOL => {
+            &BAND_POINTS_FINE
+        }
+        Solver::Adaptive(Adaptive::Dopri5(d)) if d.rtol <= DOPRI5_COARSE_BAND_RTOL => {
+            &BAND_POINTS_COARSE
+        }
+        Solver::Adaptive(Adaptive::Radau5(r)) if r.rtol <= RADAU5_FINE_BAND_RTOL => {
+            &BAND_POINTS_FINE
+        }
         _ => &[],
     }
 }
@@ -399,8 +406,7 @@ impl Equations<'_> {
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Solver {
-    Dopri5(Dopri5),
-    Radau5(Radau5),
+    Adaptive(Adaptive),
     Rk4 { steps_per_period: u32 },
     TwoPhase(two_phase::TwoPhase),
     Exponential(exponential::Exponential),
@@ -410,9 +416,8 @@ impl Solver {
     /// The relative tolerance of an adaptive solver.
     fn rtol(&self) -> Option<f64> {
         match self {
-            Solver::Dopri5(d) => Some(d.rtol),
-            Solver::Radau5(r) => Some(r.rtol),
-            _ => None,
+            Solver::Adaptive(a) => Some(a.rtol()),
+            Solver::Rk4 { .. } | Solver::TwoPhase(_) | Solver::Exponential(_) => None,
         }
     }
 }
@@ -703,9 +708,13 @@ impl Transverse {
                 if name == TransverseSolver::Radau5 {
                     let mut radau = Radau5::new(rtol, rtol, 0.05 / f);
                     radau.atol_scale = scale;
-                    Solver::Radau5(radau)
+                    Solver::Adaptive(Adaptive::Radau5(radau))
                 } else {
-                    Solver::Dopri5(Dopri5::new(rtol, scale.map(|s| rtol * s), 0.05 / f))
+                    Solver::Adaptive(Adaptive::Dopri5(Dopri5::new(
+                        rtol,
+                        scale.map(|s| rtol * s),
+                        0.05 / f,
+                    )))
                 }
             }
         };
@@ -793,7 +802,7 @@ impl Transverse {
         };
         let eq: &dyn Switching = if self.trim.axial { &axial } else { &planar };
         match &mut self.solver {
-            Solver::Dopri5(_) | Solver::Radau5(_) if round_off => {
+            Solver::Adaptive(_) if round_off => {
                 let mut rk = Rk4 {
                     h_max: f64::INFINITY,
                 };
@@ -802,13 +811,15 @@ impl Transverse {
             // On the equations' own types rather than through `eq`: the contact then inlines
             // into the right-hand side, and the step takes fewer instructions
             // (docs/performance.md, "Measurements behind the code").
-            Solver::Dopri5(d) if self.trim.axial => {
+            Solver::Adaptive(Adaptive::Dopri5(d)) if self.trim.axial => {
                 d.integrate_switched(&axial, t0, t1, &mut self.y, &mut self.work)?
             }
-            Solver::Dopri5(d) => {
+            Solver::Adaptive(Adaptive::Dopri5(d)) => {
                 d.integrate_switched(&planar, t0, t1, &mut self.y, &mut self.work)?
             }
-            Solver::Radau5(r) => r.integrate_switched(eq, t0, t1, &mut self.y, &mut self.work)?,
+            Solver::Adaptive(Adaptive::Radau5(r)) => {
+                r.integrate_switched(eq, t0, t1, &mut self.y, &mut self.work)?
+            }
             Solver::Rk4 { steps_per_period } => {
                 let mut rk = Rk4 {
                     h_max: 1.0 / (self.p.f * f64::from(*steps_per_period)),
@@ -928,10 +939,10 @@ impl Simulation for Transverse {
         if let Some(notice) = self.notice.take() {
             return Some(notice);
         }
-        let Solver::Dopri5(d) = &mut self.solver else {
+        let Solver::Adaptive(a) = &mut self.solver else {
             return None;
         };
-        let t = d.stiff_since()?;
+        let t = a.stiff_since()?;
         Some(super::stiff_warning(t, "radau5 or exponential"))
     }
 
@@ -949,8 +960,7 @@ impl Simulation for Transverse {
         out.extend_from_slice(&self.y);
         out.extend_from_slice(&self.mean.save());
         match &self.solver {
-            Solver::Dopri5(d) => out.push(d.h),
-            Solver::Radau5(r) => out.push(r.h_next),
+            Solver::Adaptive(a) => out.push(a.step_hint()),
             Solver::Rk4 { .. } | Solver::Exponential(_) => out.push(0.0),
             Solver::TwoPhase(tp) => out.extend_from_slice(&tp.save()),
         }
@@ -970,8 +980,7 @@ impl Simulation for Transverse {
         self.y.copy_from_slice(&state[3..3 + MAX_DIM]);
         self.mean.restore(&state[3 + MAX_DIM..base]);
         match &mut self.solver {
-            Solver::Dopri5(d) => d.h = state[base],
-            Solver::Radau5(r) => r.h_next = state[base],
+            Solver::Adaptive(a) => a.set_step_hint(state[base]),
             Solver::Rk4 { .. } | Solver::Exponential(_) => {}
             Solver::TwoPhase(tp) => tp.restore(&state[base..]),
         }

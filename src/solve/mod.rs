@@ -4,6 +4,7 @@
 //! Integrators keep their scratch space inline (systems have at most [`MAX_DIM`] states), so a
 //! doStep never allocates.
 
+pub mod adaptive;
 pub mod dense;
 pub mod dopri;
 pub mod expm;

@@ -118,3 +118,58 @@ pub const fn real_output(
         depends_on,
     }
 }
+
+// Parameters more than one model declares: the same name, meaning, unit and range everywhere,
+// each model choosing its default.
+
+/// `tolerance`: the relative tolerance of the adaptive solvers.
+pub const fn tolerance(value_reference: u32, start: f64) -> Variable {
+    real_parameter(
+        "tolerance",
+        value_reference,
+        "Relative tolerance of dopri5 and radau5",
+        start,
+        "",
+        1e-14,
+        1e-2,
+    )
+}
+
+/// `m`: the mass of the sliding body.
+pub const fn body_mass(value_reference: u32, start: f64) -> Variable {
+    real_parameter(
+        "m",
+        value_reference,
+        "Mass of the sliding body (> 0)",
+        start,
+        "kg",
+        POSITIVE,
+        f64::INFINITY,
+    )
+}
+
+/// `g`: the gravitational acceleration, 9.81 m/s2 unless set.
+pub const fn gravity(value_reference: u32) -> Variable {
+    real_parameter(
+        "g",
+        value_reference,
+        "Gravitational acceleration (> 0)",
+        9.81,
+        "m/s2",
+        POSITIVE,
+        f64::INFINITY,
+    )
+}
+
+/// `kt`: the tangential contact stiffness.
+pub const fn contact_stiffness(value_reference: u32, start: f64) -> Variable {
+    real_parameter(
+        "kt",
+        value_reference,
+        "Tangential contact stiffness (> 0)",
+        start,
+        "N/m",
+        POSITIVE,
+        f64::INFINITY,
+    )
+}

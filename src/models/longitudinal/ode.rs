@@ -6,6 +6,7 @@
 use super::Law;
 use crate::models::longitudinal::table::vr;
 use crate::models::switch::{LongitudinalSolver, Switch};
+use crate::solve::adaptive::Adaptive;
 use crate::solve::dopri::Dopri5;
 use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
@@ -19,8 +20,7 @@ pub enum Solver {
     Rk4 {
         h_max: f64,
     },
-    Dopri5(Dopri5),
-    Radau5(Radau5),
+    Adaptive(Adaptive),
 }
 
 /// The law as a function of time, under a moving normal force.
@@ -105,12 +105,12 @@ impl Solver {
         Ok(if name == LongitudinalSolver::Radau5 {
             let mut radau = Radau5::new(rtol, rtol * z_scale.min(q_scale), 1.0 / f);
             radau.atol_scale[2] = f64::INFINITY;
-            Solver::Radau5(radau)
+            Solver::Adaptive(Adaptive::Radau5(radau))
         } else {
             let mut atol = [rtol * z_scale; MAX_DIM];
             atol[1] = rtol * q_scale;
             atol[2] = f64::INFINITY;
-            Solver::Dopri5(Dopri5::new(rtol, atol, 1.0 / f))
+            Solver::Adaptive(Adaptive::Dopri5(Dopri5::new(rtol, atol, 1.0 / f)))
         })
     }
 
@@ -119,37 +119,18 @@ impl Solver {
         matches!(self, Solver::Exponential | Solver::Rk4 { .. })
     }
 
-    /// The relative tolerance of an adaptive solver.
-    pub fn rtol(&self) -> Option<f64> {
+    /// The adaptive solver, if it is one.
+    pub fn adaptive(&self) -> Option<&Adaptive> {
         match self {
-            Solver::Dopri5(d) => Some(d.rtol),
-            Solver::Radau5(r) => Some(r.rtol),
-            _ => None,
+            Solver::Adaptive(a) => Some(a),
+            Solver::Exponential | Solver::Rk4 { .. } => None,
         }
     }
 
-    /// Where dopri5 found the problem stiff, once ([`Dopri5::stiff_since`]).
-    pub fn stiff_since(&mut self) -> Option<f64> {
+    pub fn adaptive_mut(&mut self) -> Option<&mut Adaptive> {
         match self {
-            Solver::Dopri5(d) => d.stiff_since(),
-            _ => None,
-        }
-    }
-
-    /// The step the adaptive solver would try next (part of the saved FMU state).
-    pub fn step_hint(&self) -> f64 {
-        match self {
-            Solver::Dopri5(d) => d.h,
-            Solver::Radau5(r) => r.h_next,
-            _ => 0.0,
-        }
-    }
-
-    pub fn set_step_hint(&mut self, h: f64) {
-        match self {
-            Solver::Dopri5(d) => d.h = h,
-            Solver::Radau5(r) => r.h_next = h,
-            _ => {}
+            Solver::Adaptive(a) => Some(a),
+            Solver::Exponential | Solver::Rk4 { .. } => None,
         }
     }
 
@@ -174,8 +155,7 @@ impl Solver {
         match self {
             Solver::Exponential => return Err("exponential is not an ODE solver".into()),
             Solver::Rk4 { h_max } => Rk4 { h_max: *h_max }.integrate(&ode, t0, t1, &mut y, work)?,
-            Solver::Dopri5(d) => d.integrate(&ode, t0, t1, &mut y, work)?,
-            Solver::Radau5(r) => r.integrate(&ode, t0, t1, &mut y, work)?,
+            Solver::Adaptive(a) => a.integrate(&ode, t0, t1, &mut y, work)?,
         }
         *z = y[0];
         Ok((y[1], y[2]))

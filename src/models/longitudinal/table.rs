@@ -2,7 +2,8 @@
 //! (Leus & Gutowski 2008, JTAM 46(1)); Coulomb, Dahl or LuGre friction.
 
 use crate::variables::declare::{
-    enum_parameter, integer_parameter, real_input, real_output, real_parameter, POSITIVE,
+    body_mass, contact_stiffness, enum_parameter, gravity, integer_parameter, real_input,
+    real_output, real_parameter, tolerance, POSITIVE,
 };
 use crate::variables::variable::{DefaultExperiment, EnumType, InputSwitch, ModelTable, Variable};
 
@@ -143,24 +144,8 @@ const VARIABLES: &[Variable] = &[
         4,
         10_000_000,
     ),
-    real_parameter(
-        "tolerance",
-        vr::TOLERANCE,
-        "Relative tolerance of dopri5 and radau5",
-        1e-8,
-        "",
-        1e-14,
-        1e-2,
-    ),
-    real_parameter(
-        "m",
-        vr::M,
-        "Mass of the sliding body (> 0)",
-        0.02,
-        "kg",
-        POSITIVE,
-        INF,
-    ),
+    tolerance(vr::TOLERANCE, 1e-8),
+    body_mass(vr::M, 0.02),
     real_parameter(
         "mu",
         vr::MU,
@@ -170,24 +155,8 @@ const VARIABLES: &[Variable] = &[
         POSITIVE,
         INF,
     ),
-    real_parameter(
-        "g",
-        vr::G,
-        "Gravitational acceleration (> 0)",
-        9.81,
-        "m/s2",
-        POSITIVE,
-        INF,
-    ),
-    real_parameter(
-        "kt",
-        vr::KT,
-        "Tangential contact stiffness (> 0)",
-        5.6e4,
-        "N/m",
-        POSITIVE,
-        INF,
-    ),
+    gravity(vr::G),
+    contact_stiffness(vr::KT, 5.6e4),
     real_parameter(
         "alpha",
         vr::ALPHA,

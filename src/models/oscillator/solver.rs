@@ -5,6 +5,7 @@
 use super::Equations;
 use crate::friction::regularized::Regularized;
 use crate::models::switch::OscillatorSolver;
+use crate::solve::adaptive::Adaptive;
 use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
 use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
@@ -12,8 +13,7 @@ use crate::solve::{Integrator, Work, MAX_DIM};
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Solver {
-    Radau5(Radau5),
-    Dopri5(Dopri5),
+    Adaptive(Adaptive),
     Rk4(Rk4),
 }
 
@@ -26,48 +26,38 @@ impl Solver {
             OscillatorSolver::Dopri5 => {
                 let mut atols = [atol; MAX_DIM];
                 atols[2] = f64::INFINITY;
-                Solver::Dopri5(Dopri5::new(rtol, atols, h_max))
+                Solver::Adaptive(Adaptive::Dopri5(Dopri5::new(rtol, atols, h_max)))
             }
             OscillatorSolver::Rk4 => Solver::Rk4(Rk4 { h_max }),
             OscillatorSolver::Radau5 => {
                 let mut radau = Radau5::new(rtol, atol, h_max);
                 radau.atol_scale[2] = f64::INFINITY;
-                Solver::Radau5(radau)
+                Solver::Adaptive(Adaptive::Radau5(radau))
             }
         }
     }
 
     pub fn atol(&self) -> f64 {
         match self {
-            Solver::Radau5(r) => r.atol,
-            Solver::Dopri5(d) => d.atol[0],
+            Solver::Adaptive(Adaptive::Radau5(r)) => r.atol,
+            Solver::Adaptive(Adaptive::Dopri5(d)) => d.atol[0],
             // The turning-point search stops at this resolution of u'.
             Solver::Rk4(_) => 1e-12,
         }
     }
 
-    /// Where dopri5 found the problem stiff, once ([`Dopri5::stiff_since`]).
-    pub fn stiff_since(&mut self) -> Option<f64> {
+    /// The adaptive solver, if it is one.
+    pub fn adaptive(&self) -> Option<&Adaptive> {
         match self {
-            Solver::Dopri5(d) => d.stiff_since(),
-            _ => None,
+            Solver::Adaptive(a) => Some(a),
+            Solver::Rk4(_) => None,
         }
     }
 
-    /// The step the adaptive solver would try next (part of the saved FMU state).
-    pub fn step_hint(&self) -> f64 {
+    pub fn adaptive_mut(&mut self) -> Option<&mut Adaptive> {
         match self {
-            Solver::Radau5(r) => r.h_next,
-            Solver::Dopri5(d) => d.h,
-            Solver::Rk4(_) => 0.0,
-        }
-    }
-
-    pub fn set_step_hint(&mut self, h: f64) {
-        match self {
-            Solver::Radau5(r) => r.h_next = h,
-            Solver::Dopri5(d) => d.h = h,
-            Solver::Rk4(_) => {}
+            Solver::Adaptive(a) => Some(a),
+            Solver::Rk4(_) => None,
         }
     }
 
@@ -80,8 +70,7 @@ impl Solver {
         work: &mut Work,
     ) -> Result<(), String> {
         match self {
-            Solver::Radau5(r) => r.integrate_switched(equations, t0, t1, y, work),
-            Solver::Dopri5(d) => d.integrate_switched(equations, t0, t1, y, work),
+            Solver::Adaptive(a) => a.integrate_switched(equations, t0, t1, y, work),
             Solver::Rk4(r) => r.integrate(equations, t0, t1, y, work),
         }
     }

@@ -2,7 +2,8 @@
 //! with a 2D LuGre contact (paper T, eq. 1-30).
 
 use crate::variables::declare::{
-    enum_parameter, integer_parameter, real_input, real_output, real_parameter, POSITIVE,
+    body_mass, contact_stiffness, enum_parameter, gravity, integer_parameter, real_input,
+    real_output, real_parameter, tolerance, POSITIVE,
 };
 use crate::variables::variable::{DefaultExperiment, EnumType, InputSwitch, ModelTable, Variable};
 
@@ -141,24 +142,8 @@ const VARIABLES: &[Variable] = &[
         1,
         100_000_000,
     ),
-    real_parameter(
-        "tolerance",
-        vr::TOLERANCE,
-        "Relative tolerance of dopri5 and radau5",
-        1e-10,
-        "",
-        1e-14,
-        1e-2,
-    ),
-    real_parameter(
-        "m",
-        vr::M,
-        "Mass of the sliding body (> 0)",
-        0.56,
-        "kg",
-        POSITIVE,
-        INF,
-    ),
+    tolerance(vr::TOLERANCE, 1e-10),
+    body_mass(vr::M, 0.56),
     real_parameter(
         "mu",
         vr::MU,
@@ -168,15 +153,7 @@ const VARIABLES: &[Variable] = &[
         POSITIVE,
         INF,
     ),
-    real_parameter(
-        "g",
-        vr::G,
-        "Gravitational acceleration (> 0)",
-        9.81,
-        "m/s2",
-        POSITIVE,
-        INF,
-    ),
+    gravity(vr::G),
     real_parameter(
         "FS_ratio",
         vr::FS_RATIO,
@@ -195,15 +172,7 @@ const VARIABLES: &[Variable] = &[
         POSITIVE,
         INF,
     ),
-    real_parameter(
-        "kt",
-        vr::KT,
-        "Tangential contact stiffness (> 0)",
-        6.286e7,
-        "N/m",
-        POSITIVE,
-        INF,
-    ),
+    contact_stiffness(vr::KT, 6.286e7),
     real_parameter(
         "zeta",
         vr::ZETA,

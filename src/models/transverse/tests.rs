@@ -436,7 +436,7 @@ fn the_total_laws_slip_rate_taken_at_the_steps_middle_gains_accuracy() {
         rate: 0.0,
         t0: 0.0,
     };
-    let Solver::Dopri5(tight) = &sim.solver else {
+    let Solver::Adaptive(Adaptive::Dopri5(tight)) = &sim.solver else {
         unreachable!()
     };
     // FFx's integral over the last of 150 periods, sub-steps ending on the periods as in the
