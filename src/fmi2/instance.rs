@@ -286,6 +286,9 @@ impl Instance {
         self.outputs_current = false;
         match (self.model.build)(&self.values, self.start_time, &self.scope) {
             Ok(mut sim) => {
+                // What the build could not mend (a periodic start that fell back to the
+                // transient, a law the solvers cannot resolve): said by the call that built it.
+                let found = sim.take_warning();
                 let handed = self
                     .pending_derivatives
                     .iter()
@@ -298,12 +301,17 @@ impl Instance {
                 self.time = self.start_time;
                 self.last_successful_time = self.start_time;
                 self.phase = StepComplete;
-                match self.unread_inputs.start(self.model.table, &self.values) {
-                    Some(message) => {
-                        self.warning(&format!("fmi2ExitInitializationMode: {message}"));
-                        Status::Warning
-                    }
-                    None => Status::Ok,
+                let warnings = [
+                    found,
+                    self.unread_inputs.start(self.model.table, &self.values),
+                ];
+                for message in warnings.iter().flatten() {
+                    self.warning(&format!("fmi2ExitInitializationMode: {message}"));
+                }
+                if warnings.iter().any(Option::is_some) {
+                    Status::Warning
+                } else {
+                    Status::Ok
                 }
             }
             Err(message) => self.error(&format!("fmi2ExitInitializationMode: {message}")),

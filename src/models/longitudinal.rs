@@ -142,7 +142,7 @@ pub struct Longitudinal {
     pub ode_dim: usize,
     /// FT_mean or S is read: sub-steps end on period boundaries.
     pub tracks_mean: bool,
-    /// A warning for the first step (why the periodic start fell back to the transient).
+    /// Why the periodic start fell back to the transient, for the first [`Simulation::take_warning`].
     notice: Option<String>,
 }
 

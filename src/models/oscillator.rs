@@ -189,7 +189,8 @@ pub struct Oscillator {
     pub tracks_amplitude: bool,
     /// rtol: the accuracy the amplitude is asked to (see [`super::clock_warning`]).
     reading_tolerance: f64,
-    /// Said at the first step: a law whose band is too narrow for any solver here.
+    /// For the first [`Simulation::take_warning`]: a law whose band is too narrow for any solver
+    /// here, or why the periodic start fell back to the transient.
     unresolved: Option<String>,
     pub work: Work,
 }

@@ -446,7 +446,7 @@ pub struct Transverse {
     pub work: Work,
     /// What the scope lets the simulation skip.
     pub trim: Trim,
-    /// A warning for the first step (why the periodic start fell back to the transient).
+    /// Why the periodic start fell back to the transient, for the first [`Simulation::take_warning`].
     notice: Option<String>,
 }
 

@@ -231,3 +231,23 @@ def test_bad_parameters_are_refused_with_a_message(name, value, phrase):
         assert any(phrase in m for m in messages), messages
     finally:
         slave.free()
+
+
+def test_a_periodic_start_that_falls_back_says_so_when_initialization_ends():
+    """Oracle: FMI 2.0, 2.1.3 (a call that succeeded with a caveat returns fmi2Warning and logs
+    it). At vd 0.1 mm/s, va 0.3 mm/s the contact sticks and slips, shooting stalls short of the
+    tolerance, and the run starts from the nearest iterate: the call that ran the shooting,
+    fmi2ExitInitializationMode, warns with the reason, and the first step is plain fmi2OK."""
+    slave = Slave(MODEL)
+    slave.fmu.setupExperiment(startTime=0.0)
+    slave.fmu.enterInitializationMode()
+    slave.set(vd=1e-4, va=3e-4, f=F, initial="periodic", tolerance=1e-8)
+    assert slave.fmu.exitInitializationMode() == 1  # fmi2Warning
+    message = slave.last_message()
+    assert message.startswith("fmi2ExitInitializationMode: initial = periodic: no periodic orbit")
+    assert "starts from the state nearest to closing the period" in message
+    count = len(slave.messages)
+    assert slave.fmu.fmi2DoStep(slave.fmu.component, 0.0, 1.0 / F, 1) == 0  # fmi2OK
+    assert len(slave.messages) == count
+    assert math.isfinite(slave.get("FFx_mean")[0])
+    slave.free()
