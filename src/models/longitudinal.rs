@@ -23,6 +23,7 @@ pub mod stability;
 pub mod table;
 
 use super::period_mean::PeriodMean;
+use super::ramp::Ramp;
 use super::switch::{
     LongitudinalInitialState, LongitudinalLaw, NormalForceSource, Switch, VelocitySource,
 };
@@ -68,41 +69,6 @@ pub enum Velocity {
     Prescribed { vc: f64, va: f64 },
     /// vr = vr_in over each step ([`Ramp`])
     Input,
-}
-
-/// An input over the step under way, on the equations' time (0 at the step's start): its value
-/// there, and the rate the master set for the step (0: held).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-struct Ramp {
-    value: f64,
-    rate: f64,
-}
-
-impl Ramp {
-    fn at(self, t: f64) -> f64 {
-        self.value + self.rate * t
-    }
-
-    /// The integral over `[t0, t1]`.
-    fn integral(self, t0: f64, t1: f64) -> f64 {
-        (t1 - t0) * self.at(0.5 * (t0 + t1))
-    }
-
-    /// Where the input crosses zero, if it moves.
-    fn zero(self) -> Option<f64> {
-        (self.rate != 0.0).then(|| -self.value / self.rate)
-    }
-
-    /// The value and rate as read from `value`, the rate taken for one step.
-    fn checked(name: &str, value: f64, rate: f64) -> Result<Ramp, String> {
-        if value.is_finite() && rate.is_finite() {
-            Ok(Ramp { value, rate })
-        } else {
-            Err(format!(
-                "{name} = {value} with derivative {rate}: expected finite numbers"
-            ))
-        }
-    }
 }
 
 #[derive(Clone, Debug, PartialEq)]

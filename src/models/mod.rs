@@ -5,6 +5,7 @@ pub mod drive;
 pub mod longitudinal;
 pub mod oscillator;
 pub mod period_mean;
+pub mod ramp;
 pub mod scope;
 #[cfg(feature = "tools")]
 pub mod stability;

@@ -22,6 +22,7 @@ pub mod table;
 mod two_phase;
 
 use super::period_mean::PeriodMean;
+use super::ramp::Ramp;
 use super::switch::{self, DriveSource, InitialState, Switch, TransverseSolver};
 use super::{
     require_finite, require_finite_start, require_non_negative, require_passive, require_positive,
@@ -257,25 +258,10 @@ pub fn tolerance_scales(p: &Params, vd: f64) -> [f64; MAX_DIM] {
     scale
 }
 
-/// The drive velocity over a communication step from `t0`: held at `v0`, or moving at `rate`
-/// when the master gave the input's derivative for the step.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DriveVelocity {
-    pub v0: f64,
-    pub rate: f64,
-    pub t0: f64,
-}
-
-impl DriveVelocity {
-    pub fn at(&self, t: f64) -> f64 {
-        self.v0 + self.rate * (t - self.t0)
-    }
-}
-
 /// The continuous-time ODE with the drive velocity `vd(t)`.
 pub struct Equations<'a> {
     p: &'a Params,
-    vd: DriveVelocity,
+    vd: Ramp,
     /// Where steps also end inside the Stribeck band ([`band_points`]).
     band_points: &'static [f64],
     /// The support velocity at the last time asked for: dopri5's last two stages and the
@@ -285,7 +271,7 @@ pub struct Equations<'a> {
 }
 
 impl<'a> Equations<'a> {
-    pub fn new(p: &'a Params, vd: DriveVelocity, band_points: &'static [f64]) -> Self {
+    pub fn new(p: &'a Params, vd: Ramp, band_points: &'static [f64]) -> Self {
         Equations {
             p,
             vd,
@@ -779,12 +765,7 @@ impl Transverse {
 
     /// Advances over one sub-step `[start, end]` that lies within one period; `origin` is the
     /// absolute time the equations' time counts from (the step's start).
-    fn substep(
-        &mut self,
-        origin: f64,
-        (start, end): (f64, f64),
-        vd: DriveVelocity,
-    ) -> Result<(), String> {
+    fn substep(&mut self, origin: f64, (start, end): (f64, f64), vd: Ramp) -> Result<(), String> {
         let (t0, t1) = (start - origin, end - origin);
         // Sub-step ends that met in the round-off of the absolute time (a period's boundary a
         // few ulps from the master's point): one explicit step, as the adaptive solvers took
@@ -860,14 +841,13 @@ impl Simulation for Transverse {
             }
             self.vd_held = v;
         }
-        let vd = DriveVelocity {
-            v0: self.vd(),
+        let vd = Ramp {
+            value: self.vd(),
             rate: if self.drive == Drive::Input {
                 rate
             } else {
                 0.0
             },
-            t0: 0.0,
         };
         let origin = self.t;
         let t_end = self.t + h;
@@ -1020,7 +1000,7 @@ impl Simulation for Transverse {
             0.0
         };
         Ok(match value_reference {
-            vr::FD => self.p.kd * (vd.v0 - dydt[X]) + self.p.hd * (vd.rate - dydt[VX]),
+            vr::FD => self.p.kd * (vd.value - dydt[X]) + self.p.hd * (vd.rate - dydt[VX]),
             vr::X => dydt[X],
             vr::Y => dydt[Y],
             vr::S => s_rate,
@@ -1045,15 +1025,14 @@ impl Simulation for Transverse {
 impl Transverse {
     /// The drive velocity over the coming step as the outputs see it: vd_in's current value
     /// and the rate set for the step when it is the source.
-    fn drive_velocity_now(&self, values: &ValueSet) -> DriveVelocity {
-        DriveVelocity {
-            v0: self.vd_now(values),
+    fn drive_velocity_now(&self, values: &ValueSet) -> Ramp {
+        Ramp {
+            value: self.vd_now(values),
             rate: if self.drive == Drive::Input {
                 self.vd_rate
             } else {
                 0.0
             },
-            t0: 0.0,
         }
     }
 

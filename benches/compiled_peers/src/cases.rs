@@ -4,15 +4,18 @@
 use crate::peers::{self, Outcome, Peer};
 use crate::problem::{self, Mode, Reading, Spec};
 use friction_fmu::friction::regularized::Regularized;
-use friction_fmu::variables::values::ValueSet;
-use friction_fmu::variables::variable::EnumType;
-use friction_fmu::models::{longitudinal::table as il, oscillator::table as io, transverse::table as it};
 use friction_fmu::models::longitudinal::{Law, Longitudinal, Velocity};
 use friction_fmu::models::oscillator::{Equations, Forced, Oscillator};
+use friction_fmu::models::ramp::Ramp;
 use friction_fmu::models::transverse::{
-    tolerance_scales, DriveVelocity, Equations as TransverseEquations, Transverse, COUPLED,
+    tolerance_scales, Equations as TransverseEquations, Transverse, COUPLED,
 };
 use friction_fmu::models::Simulation;
+use friction_fmu::models::{
+    longitudinal::table as il, oscillator::table as io, transverse::table as it,
+};
+use friction_fmu::variables::values::ValueSet;
+use friction_fmu::variables::variable::EnumType;
 use std::cell::Cell;
 use std::f64::consts::TAU;
 use std::rc::Rc;
@@ -171,10 +174,9 @@ pub fn transverse(slip_law: &'static str, kt_factor: f64, scipy: &[(f64, f64)]) 
     let vd = values.real(it::vr::VD);
     let p: &'static _ = Box::leak(Box::new(sim.p));
     let f = p.f;
-    let drive = DriveVelocity {
-        v0: vd,
+    let drive = Ramp {
+        value: vd,
         rate: 0.0,
-        t0: 0.0,
     };
     let scales = tolerance_scales(p, vd);
     let mut scale = scales[..COUPLED].to_vec();

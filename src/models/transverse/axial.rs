@@ -10,8 +10,8 @@
 //! quadratures `[x, w, q]` (q only when the mean force is read).
 
 use super::{
-    band_coordinate, kink_switches, DriveVelocity, Params, BAND, COUPLED_AXIAL, LAMBDA, Q, VX, VY,
-    W, X, ZX, ZY,
+    band_coordinate, kink_switches, Params, Ramp, BAND, COUPLED_AXIAL, LAMBDA, Q, VX, VY, W, X, ZX,
+    ZY,
 };
 use crate::solve::dopri::{Switching, MAX_SWITCHES};
 use crate::solve::narrow::Narrow;
@@ -19,7 +19,7 @@ use crate::solve::Ode;
 
 pub struct Axial<'a> {
     pub p: &'a Params,
-    pub vd: DriveVelocity,
+    pub vd: Ramp,
     /// Without the force integral q, or with it (`Trim::dim`).
     pub dim: usize,
     /// Where steps also end inside the Stribeck band, as in the plane.

@@ -431,10 +431,9 @@ impl Switching for RateAtStart<'_> {
 fn the_total_laws_slip_rate_taken_at_the_steps_middle_gains_accuracy() {
     let v = benchmark_case("dopri5", "total", 1.0, 1e-12);
     let sim = Transverse::new(&v, 0.0).unwrap();
-    let vd = DriveVelocity {
-        v0: 5e-4,
+    let vd = Ramp {
+        value: 5e-4,
         rate: 0.0,
-        t0: 0.0,
     };
     let Solver::Adaptive(Adaptive::Dopri5(tight)) = &sim.solver else {
         unreachable!()

@@ -7,7 +7,7 @@
 //! a deflection that an Euler update drives below zero puts M on the other side of N.
 //! The mean of FFx sums FFx at the step ends times the step, the integral form of eq. 30.
 
-use super::{DriveVelocity, Params, LAMBDA, Q, VX, VY, W, X, Y, ZX, ZY};
+use super::{Params, Ramp, LAMBDA, Q, VX, VY, W, X, Y, ZX, ZY};
 use crate::solve::Work;
 use nalgebra::Vector2;
 
@@ -70,7 +70,7 @@ impl TwoPhase {
     pub fn advance(
         &mut self,
         p: &Params,
-        vd: DriveVelocity,
+        vd: Ramp,
         (origin, t0, t1): (f64, f64, f64),
         y: &mut [f64],
         work: &mut Work,
@@ -111,7 +111,7 @@ impl TwoPhase {
 
     /// One step of eq. 11-29 over `h`. The drive stretch takes the exact integral of vd over the
     /// step (its midpoint value, vd being linear in t).
-    fn step(&mut self, p: &Params, vd: DriveVelocity, t: f64, h: f64, y: &mut [f64]) {
+    fn step(&mut self, p: &Params, vd: Ramp, t: f64, h: f64, y: &mut [f64]) {
         let law = &p.law;
         let n_old = Vector2::new(y[X], y[Y]);
         let z = Vector2::new(y[ZX], y[ZY]);
