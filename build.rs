@@ -1,7 +1,6 @@
 //! Writes, into OUT_DIR only, every model's modelDescription.xml (from its variable table,
-//! `src/models/<model>/table.rs`) and the
-//! GUIDs (a hash of each XML) that `fmi2Instantiate` checks, so the binary and its XML can never
-//! drift apart. The XML comes from `src/model_description`, the writer the library uses for
+//! `src/models/<model>/table.rs`) and the GUIDs (a hash of each XML) that `fmi2Instantiate`
+//! checks, so the binary and its XML can never drift apart. The XML comes from `src/model_description`, the writer the library uses for
 //! variants. `friction-fmu build` copies the XML to `modelDescription/`, where a test checks
 //! that the committed copy is current.
 
@@ -9,25 +8,20 @@
 #[path = "src/variables/mod.rs"]
 mod variables;
 
-// The tables, as `src/models/mod.rs` registers them (a test there holds the two lists to one).
-#[allow(dead_code)]
-#[path = "src/models/drive/table.rs"]
-mod drive;
-#[allow(dead_code)]
-#[path = "src/models/longitudinal/table.rs"]
-mod longitudinal;
-#[allow(dead_code)]
-#[path = "src/models/oscillator/table.rs"]
-mod oscillator;
-#[allow(dead_code)]
-#[path = "src/models/transverse/table.rs"]
-mod transverse;
-const TABLES: &[&variables::variable::ModelTable] = &[
-    &longitudinal::TABLE,
-    &transverse::TABLE,
-    &oscillator::TABLE,
-    &drive::TABLE,
-];
+// Each model's variable table, as src/models/list.rs lists the models.
+macro_rules! models {
+    ($($module:ident => $constant:ident),* $(,)?) => {
+        $(
+            #[allow(dead_code)]
+            mod $module {
+                // Relative to src/models/list.rs, where the macro is invoked.
+                include!(concat!(stringify!($module), "/table.rs"));
+            }
+        )*
+        const TABLES: &[&variables::variable::ModelTable] = &[$(&$module::TABLE),*];
+    };
+}
+include!("src/models/list.rs");
 
 #[allow(dead_code)]
 #[path = "src/model_description/mod.rs"]

@@ -131,42 +131,26 @@ pub struct Model {
     pub stability: stability::Cases,
 }
 
-// One constant per model, so that an FMU's library that names one links none of the others.
-pub const LONGITUDINAL: Model = Model {
-    table: &longitudinal::table::TABLE,
-    build: longitudinal::build,
-    #[cfg(feature = "tools")]
-    documentation: include_str!("longitudinal/documentation.html"),
-    #[cfg(feature = "tools")]
-    stability: longitudinal::stability::CASES,
-};
-pub const TRANSVERSE: Model = Model {
-    table: &transverse::table::TABLE,
-    build: transverse::build,
-    #[cfg(feature = "tools")]
-    documentation: include_str!("transverse/documentation.html"),
-    #[cfg(feature = "tools")]
-    stability: transverse::stability::CASES,
-};
-pub const OSCILLATOR: Model = Model {
-    table: &oscillator::table::TABLE,
-    build: oscillator::build,
-    #[cfg(feature = "tools")]
-    documentation: include_str!("oscillator/documentation.html"),
-    #[cfg(feature = "tools")]
-    stability: oscillator::stability::CASES,
-};
-pub const DRIVE: Model = Model {
-    table: &drive::table::TABLE,
-    build: drive::build,
-    #[cfg(feature = "tools")]
-    documentation: include_str!("drive/documentation.html"),
-    #[cfg(feature = "tools")]
-    stability: drive::stability::CASES,
-};
+// One constant per model, so that an FMU's library that names one links none of the others,
+// and the registry of them all, from the list in src/models/list.rs.
+macro_rules! models {
+    ($($module:ident => $constant:ident),* $(,)?) => {
+        $(
+            pub const $constant: Model = Model {
+                table: &$module::table::TABLE,
+                build: $module::build,
+                #[cfg(feature = "tools")]
+                documentation: include_str!(concat!(stringify!($module), "/documentation.html")),
+                #[cfg(feature = "tools")]
+                stability: $module::stability::CASES,
+            };
+        )*
 
-/// The registry: adding a model is a line here (and its constant above).
-pub const MODELS: &[Model] = &[LONGITUDINAL, TRANSVERSE, OSCILLATOR, DRIVE];
+        /// Every model this crate exports, in the order the CLI builds them.
+        pub const MODELS: &[Model] = &[$($constant),*];
+    };
+}
+include!("list.rs");
 
 pub fn model(model_identifier: &str) -> Option<&'static Model> {
     MODELS
@@ -287,15 +271,6 @@ mod tests {
     use super::{Scope, MODELS};
     use crate::variables::values::ValueSet;
     use crate::variables::variable::Causality;
-
-    /// build.rs writes a modelDescription.xml and a GUID for each table it lists; every one is
-    /// a model here, and every model's table is there, in the same order.
-    #[test]
-    fn the_registry_lists_the_tables_build_rs_describes() {
-        let models: Vec<&str> = MODELS.iter().map(|m| m.table.model_identifier).collect();
-        let described: Vec<&str> = crate::fmi2::GUIDS.iter().map(|(id, _)| *id).collect();
-        assert_eq!(models, described);
-    }
 
     /// What modelDescription.xml declares (canInterpolateInputs) is what the models do: every
     /// input of an interpolating model takes a derivative, no input of another model does.

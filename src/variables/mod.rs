@@ -1,7 +1,7 @@
 //! What a model's variable table is made of (variables, their kinds and units, the values an
 //! instance holds), and the checks on it; each model's table is in `src/models/<model>/table.rs`.
 //!
-//! `build.rs` includes this module and the tables too (with `#[path]`) to write
+//! `build.rs` includes this module and the tables too (with `#[path]` and `include!`) to write
 //! modelDescription.xml, so nothing here may refer to the rest of the crate.
 
 pub mod declare;

@@ -1,11 +1,11 @@
-//! `DriveTrain`: a DC motor driving a lead screw through a gear; the screw's nut pulls the far
-//! end of TransverseFriction's drive spring (F_load in, v_nut out).
-//!
-//! The defaults are illustrative, not a catalogue part: a small permanent-magnet motor (5 ohm,
-//! 1 mH, 0.01 N.m/A) with a 50:1 gearhead on a 1 mm lead screw, the kind of stage that moves a
-//! sample at sub-millimetre speeds. At V = 1.58 V and F_load = FC of TransverseFriction's
-//! defaults (mu m g = 0.978 N) the nut runs at 0.4999 mm/s, the drive speed vd = 0.5 mm/s there.
-//! The electrical time constant L/R is 0.2 ms, the mechanical one J R/(kt_m ke) 10 ms.
+// `DriveTrain`: a DC motor driving a lead screw through a gear; the screw's nut pulls the far
+// end of TransverseFriction's drive spring (F_load in, v_nut out).
+//
+// The defaults are illustrative, not a catalogue part: a small permanent-magnet motor (5 ohm,
+// 1 mH, 0.01 N.m/A) with a 50:1 gearhead on a 1 mm lead screw, the kind of stage that moves a
+// sample at sub-millimetre speeds. At V = 1.58 V and F_load = FC of TransverseFriction's
+// defaults (mu m g = 0.978 N) the nut runs at 0.4999 mm/s, the drive speed vd = 0.5 mm/s there.
+// The electrical time constant L/R is 0.2 ms, the mechanical one J R/(kt_m ke) 10 ms.
 
 use crate::variables::declare::{
     enum_parameter, real_input, real_output, real_parameter, POSITIVE,

@@ -1,5 +1,5 @@
-//! `LongitudinalFriction`: a body sliding on a base that vibrates along the sliding direction
-//! (Leus & Gutowski 2008, JTAM 46(1)); Coulomb, Dahl or LuGre friction.
+// `LongitudinalFriction`: a body sliding on a base that vibrates along the sliding direction
+// (Leus & Gutowski 2008, JTAM 46(1)); Coulomb, Dahl or LuGre friction.
 
 use crate::variables::declare::{
     body_mass, contact_stiffness, enum_parameter, gravity, integer_parameter, real_input,

@@ -1,5 +1,5 @@
-//! `DryFrictionOscillator`: `m u'' + c u' + H(u') + k u = F(t)` with regularised dry friction
-//! (paper O, eq. 1-9) or the exact non-smooth switch model, `F = P sin(w t)` or an input.
+// `DryFrictionOscillator`: `m u'' + c u' + H(u') + k u = F(t)` with regularised dry friction
+// (paper O, eq. 1-9) or the exact non-smooth switch model, `F = P sin(w t)` or an input.
 
 use crate::variables::declare::{
     enum_parameter, integer_parameter, real_input, real_output, real_parameter, POSITIVE,

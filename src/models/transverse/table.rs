@@ -1,5 +1,5 @@
-//! `TransverseFriction`: a body pulled over a support that vibrates across the sliding direction,
-//! with a 2D LuGre contact (paper T, eq. 1-30).
+// `TransverseFriction`: a body pulled over a support that vibrates across the sliding direction,
+// with a 2D LuGre contact (paper T, eq. 1-30).
 
 use crate::variables::declare::{
     body_mass, contact_stiffness, enum_parameter, gravity, integer_parameter, real_input,
