@@ -1,8 +1,8 @@
 //! Writes, into OUT_DIR only, every model's modelDescription.xml (from its variable table,
 //! `src/models/<model>/table.rs`) and the GUIDs (a hash of each XML) that `fmi2Instantiate`
-//! checks, so the binary and its XML can never drift apart. The XML comes from `src/model_description`, the writer the library uses for
-//! variants. `friction-fmu build` copies the XML to `modelDescription/`, where a test checks
-//! that the committed copy is current.
+//! checks, so the binary and its XML can never drift apart. The XML comes from
+//! `src/model_description`, the writer the library uses for variants. `friction-fmu build` copies
+//! the XML to `modelDescription/`, where a test checks that the committed copy is current.
 
 #[allow(dead_code)]
 #[path = "src/variables/mod.rs"]

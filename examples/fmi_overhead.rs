@@ -5,8 +5,8 @@
 //! - (a) through the exported fmi2DoStep, in-process (src/importer.rs), outputs not read;
 //! - (b) the same, then fmi2GetReal of every output after each step;
 //! - (c) by calling the simulation directly with the same steps;
-//! - (d) by calling the simulation once per vibration (forcing) period over the same interval (once,
-//!   for a model without one or an interval shorter than it).
+//! - (d) by calling the simulation once per vibration (forcing) period over the same interval
+//!   (once, for a model without one or an interval shorter than it).
 //!
 //! (a) - (c) is the FMI layer per call; (c) - (d) what restarting the integrator at every
 //! communication point costs; (d) / CALLS the integration itself. Each figure is the median of

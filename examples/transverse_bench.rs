@@ -1,11 +1,11 @@
-//! In-process timing of scene T for benches/transverse.py: runs the simulation (no FMI layer) for each
-//! solver setting given on the command line and prints one CSV line per run.
+//! In-process timing of scene T for benches/transverse.py: runs the simulation (no FMI layer) for
+//! each solver setting given on the command line and prints one CSV line per run.
 //!
 //!   cargo run --release --example transverse_bench -- SLIP_LAW KT_FACTOR T_END COMM_STEP \
 //!       SOLVER:KNOB [SOLVER:KNOB ...]
 //!
-//! KNOB is a tolerance for dopri5/radau5 and steps per period for rk4/two_phase/exponential. Output:
-//! `slip_law,kt_factor,solver,knob,FFx_mean,cpu_seconds,rhs_evaluations,steps,rejected`.
+//! KNOB is a tolerance for dopri5/radau5 and steps per period for rk4/two_phase/exponential.
+//! Output: `slip_law,kt_factor,solver,knob,FFx_mean,cpu_seconds,rhs_evaluations,steps,rejected`.
 //! The clock is the CPU time of the running thread (`cpu_clock`).
 
 use friction_fmu::cpu_clock::time_cpu;

@@ -1,5 +1,5 @@
-//! The library of a variant FMU of DryFrictionOscillator: reads its resources/variant.toml and accepts
-//! only that file's GUID.
+//! The library of a variant FMU of DryFrictionOscillator: reads its resources/variant.toml and
+//! accepts only that file's GUID.
 // The crate is named as the FMU's modelIdentifier, the file name FMI requires.
 #![allow(non_snake_case)]
 friction_fmu::export_fmu_library!(OSCILLATOR, variant);

@@ -5,13 +5,14 @@
 //!   friction-fmu build FILE.toml... [--out DIR]
 //!                                    pack each variant into DIR/<name>.fmu: the model's
 //!                                    library with only the variables the file keeps
-//!   friction-fmu run [--out DIR]     build, pack the shipped variants/*.toml into DIR/variants, then
-//!                                    print each scene's tables beside the papers' and write
-//!                                    figures into DIR/figures (the default command)
+//!   friction-fmu run [--out DIR]     build, pack the shipped variants/*.toml into
+//!                                    DIR/variants, then print each scene's tables beside the
+//!                                    papers' and write figures into DIR/figures (the default
+//!                                    command)
 //!   friction-fmu report [--out DIR]  error against run time of every solver of every scene:
 //!                                    DIR/<scene>.md tables and DIR/<scene>.png/.svg plots
 //!                                    (default DIR: fmu-out/report); variants against the
-//!                                    full ones in DIR/trimmed.md; then prints the stability
+//!                                    full models in DIR/trimmed.md; then prints the stability
 //!                                    matrix
 //!
 //! Figures are written as data (DIR/<name>.csv and .json) and drawn into .png and .svg beside

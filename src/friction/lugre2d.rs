@@ -197,7 +197,8 @@ pub fn radial_rates(
 }
 
 /// The unit vector of `z`; for `z = 0` the one the bristle is about to take, along the relative
-/// velocity `w` (so the force at s = 0 is the damping of 1D LuGre, -(ht + hv) w); +x if both vanish.
+/// velocity `w` (so the force at s = 0 is the damping of 1D LuGre, -(ht + hv) w); +x if both
+/// vanish.
 #[inline]
 pub fn direction(z: Vector2<f64>, w: Vector2<f64>) -> Vector2<f64> {
     let s = z.norm();

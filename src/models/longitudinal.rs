@@ -108,7 +108,8 @@ pub struct Longitudinal {
     pub ode_dim: usize,
     /// FT_mean or S is read: sub-steps end on period boundaries.
     pub tracks_mean: bool,
-    /// Why the periodic start fell back to the transient, for the first [`Simulation::take_warning`].
+    /// Why the periodic start fell back to the transient, for the first
+    /// [`Simulation::take_warning`].
     notice: Option<String>,
 }
 
@@ -1194,8 +1195,8 @@ mod tests {
     /// the step's start, so a run started a whole number of periods far from 0 is the same run
     /// but for where the master's clock (a double) puts the communication points, and with them
     /// the period over which FT_mean is taken: it differs by no more than that resolution allows
-    /// (ulp(t) f of a period, times the force's swing over its mean), and the simulation asks for the
-    /// warning that says so once that resolution passes the tolerance.
+    /// (ulp(t) f of a period, times the force's swing over its mean), and the simulation asks for
+    /// the warning that says so once that resolution passes the tolerance.
     #[test]
     fn a_run_started_far_from_zero_is_the_run_started_at_zero() {
         let trace_from = |v: &ValueSet, t0: f64| {

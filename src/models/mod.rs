@@ -1,5 +1,6 @@
-//! Models: one file and folder per model. A model's simulation owns its state, its equations and its outputs; it reads
-//! parameters and inputs from a [`ValueSet`] and knows nothing of FMI.
+//! Models: one file and folder per model, listed in `list.rs`. A model's simulation owns its
+//! state, its equations and its outputs; it reads parameters and inputs from a [`ValueSet`] and
+//! knows nothing of FMI.
 
 pub mod drive;
 pub mod longitudinal;
@@ -16,8 +17,8 @@ use crate::variables::values::ValueSet;
 use crate::variables::variable::ModelTable;
 pub use scope::Scope;
 
-/// A model that can be advanced in time. Errors are messages for the user: what was wrong and
-/// what was expected.
+/// A model running in one instance: its state, advanced in time. Errors are messages for the
+/// user: what was wrong and what was expected.
 pub trait Simulation: Send {
     /// Advances from the simulation's current time by `h > 0`, reading inputs from `values`.
     fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String>;
@@ -41,7 +42,8 @@ pub trait Simulation: Send {
         state
     }
 
-    /// Restores a state written by [`Simulation::save`] of a simulation built from the same values.
+    /// Restores a state written by [`Simulation::save`] of a simulation built from the same
+    /// values.
     fn restore(&mut self, state: &[f64]) -> Result<(), String>;
 
     /// Takes the first time derivative of an input for the coming step only: the input then
@@ -56,14 +58,14 @@ pub trait Simulation: Send {
         Err(HELD_INPUTS.to_string())
     }
 
-    /// A warning the last step left for the user (logged, the step itself having succeeded):
-    /// once, then None. The default: none.
+    /// A warning the build or the last step left for the user (logged, the call itself having
+    /// succeeded): once, then None. The default: none.
     fn take_warning(&mut self) -> Option<String> {
         None
     }
 
     /// The period the simulation's readings (means, amplitudes) are taken over and the relative
-    /// accuracy asked of them, for [`clock_warning`]; None for a simulation without such readings.
+    /// accuracy asked of them, for [`clock_warning`]; None for one without such readings.
     fn reading_period(&self) -> Option<(f64, f64)> {
         None
     }
@@ -113,8 +115,8 @@ pub const FIXED_STEP_ACCURACY: f64 = 1e-9;
 pub const HELD_INPUTS: &str =
     "this model holds its inputs over each step (canInterpolateInputs = false)";
 
-/// Builds a simulation at `start_time` from parameter values, refusing inconsistent ones; `scope` says
-/// what the interface hides, so the simulation may skip what nobody can see or change.
+/// Builds a simulation at `start_time` from parameter values, refusing inconsistent ones; `scope`
+/// says what the interface hides, so the simulation may skip what nobody can see or change.
 pub type Builder =
     fn(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Box<dyn Simulation>, String>;
 

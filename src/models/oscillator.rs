@@ -237,8 +237,8 @@ impl Oscillator {
     }
 
     /// Replaces (u0, v0) by the periodic orbit's state at the start time, found by shooting on
-    /// the one-period map ([`crate::solve::shooting`]) with this simulation's law and solver, from a
-    /// period after (u0, v0). The periods it integrates count in [`Oscillator::work`].
+    /// the one-period map ([`crate::solve::shooting`]) with this simulation's law and solver, from
+    /// a period after (u0, v0). The periods it integrates count in [`Oscillator::work`].
     fn settle_on_orbit(&mut self, values: &ValueSet, scope: &Scope) -> Result<(), String> {
         let period = self.amplitude.period;
         let start_time = self.state.t;

@@ -1,9 +1,9 @@
-//! What a simulation's interface leaves out. A full model exposes every variable; a simulation built from a
-//! variant (`friction-fmu build <file>`) hides the parameters it fixes and the outputs it does
-//! not expose, and a simulation may then skip the state and work those would need (the y axis when
-//! va is fixed at 0, the bristle when the law is fixed to Coulomb, the force mean when FFx_mean
-//! is not read). The full model keeps one general path, so every trimmed model can be checked
-//! against it.
+//! What a simulation's interface leaves out. A full model exposes every variable; a simulation
+//! built from a variant (`friction-fmu build <file>`) hides the parameters it fixes and the outputs
+//! it does not expose, and a simulation may then skip the state and work those would need (the y
+//! axis when va is fixed at 0, the bristle when the law is fixed to Coulomb, the force mean when
+//! FFx_mean is not read). The full model keeps one general path, so every trimmed model can be
+//! checked against it.
 
 /// The value references an instance hides; empty for the full model.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -1,5 +1,6 @@
 //! What a model is run at in the stability matrix (src/report/stability.rs), as data: each
-//! model's folder holds its own cases (`<model>/stability.rs`), and its [`super::Model`] names them.
+//! model's folder holds its own cases (`<model>/stability.rs`), and its [`super::Model`] names
+//! them.
 
 /// A parameter value as the FMU takes it.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -432,7 +432,8 @@ pub struct Transverse {
     pub work: Work,
     /// What the scope lets the simulation skip.
     pub trim: Trim,
-    /// Why the periodic start fell back to the transient, for the first [`Simulation::take_warning`].
+    /// Why the periodic start fell back to the transient, for the first
+    /// [`Simulation::take_warning`].
     notice: Option<String>,
 }
 
@@ -518,9 +519,9 @@ impl Transverse {
     }
 
     /// Replaces the initial state by the periodic orbit's at the start time, found by shooting
-    /// on the one-period map ([`crate::solve::shooting`]) with this simulation's solver, from steady
-    /// sliding; where shooting stalls short of the tolerance, by the state nearest to closing
-    /// the period. The periods it integrates count in [`Transverse::work`].
+    /// on the one-period map ([`crate::solve::shooting`]) with this simulation's solver, from
+    /// steady sliding; where shooting stalls short of the tolerance, by the state nearest to
+    /// closing the period. The periods it integrates count in [`Transverse::work`].
     fn settle_on_orbit(&mut self, values: &ValueSet, scope: &Scope) -> Result<(), NoOrbit> {
         let n = self.coupled();
         let period = 1.0 / self.p.f;

@@ -87,7 +87,8 @@ struct Contents<'a> {
     resources: &'a [(&'a str, &'a [u8])],
 }
 
-/// Writes the FMU with the libraries of `model` (its variant FMUs' when `variant`), one per platform.
+/// Writes the FMU with the libraries of `model` (its variant FMUs' when `variant`), one per
+/// platform.
 fn write_fmu(
     contents: &Contents,
     libraries: &[Library],

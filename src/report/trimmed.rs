@@ -1,10 +1,10 @@
-//! Trimmed models against the full ones: per case, the run time of the simulation built for the full
-//! interface and of the one built for a variant's interface (the parameters it fixes and the
+//! Trimmed models against the full ones: per case, the run time of the simulation built for the
+//! full interface and of the one built for a variant's interface (the parameters it fixes and the
 //! outputs it leaves out hidden), on the same values and solver settings, and how far the outputs
 //! the trimmed interface keeps differ between the two.
 //!
-//! Both simulations are built by the models' own builders (as the FMU does), stepped through the same
-//! communication points, their outputs written after every step as fmi2DoStep does.
+//! Both simulations are built by the models' own builders (as the FMU does), stepped through the
+//! same communication points, their outputs written after every step as fmi2DoStep does.
 
 use crate::models::{self, Scope};
 use crate::models::{longitudinal::table as il, oscillator::table as io, transverse::table as it};

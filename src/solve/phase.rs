@@ -1,7 +1,7 @@
-//! The phase of a periodic forcing in turns ([`turns`]), and cos(2 pi x) for a phase `x` in turns, for periodic forcing that a right-hand side evaluates
-//! at every stage. libm's cos plus the reduction `fract` cost a large part of scene T's
-//! right-hand side (docs/performance.md, "Measurements behind the code"); reducing in turns is
-//! exact, which leaves two short polynomials.
+//! The phase of a periodic forcing in turns ([`turns`]), and cos(2 pi x) for a phase `x` in turns,
+//! for periodic forcing that a right-hand side evaluates at every stage. libm's cos plus the
+//! reduction `fract` cost a large part of scene T's right-hand side (docs/performance.md,
+//! "Measurements behind the code"); reducing in turns is exact, which leaves two short polynomials.
 //!
 //! Both polynomials are evaluated every time, by Estrin's scheme, and the quadrant picks one
 //! without a branch: Horner's chain of eight dependent products, and a quadrant branch that the

@@ -79,7 +79,8 @@ impl Radau5 {
             fixed_step: false,
             h_next: 0.0,
             // A radau5 step costs tens of right-hand sides and a factorisation: fewer of them
-            // fit in the work one communication step may take (see MAX_RHS_EVALUATIONS_PER_DO_STEP).
+            // fit in the work one communication step may take (see
+            // MAX_RHS_EVALUATIONS_PER_DO_STEP).
             max_steps: super::MAX_STEPS_PER_DO_STEP / 4,
         }
     }

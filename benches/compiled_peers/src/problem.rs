@@ -110,8 +110,9 @@ pub struct Mode(pub f64);
 
 /// Scene O's exact law as a peer must integrate it: `m u'' + c u' + k u = P sin(wt) - s h`
 /// while sliding (s = +-1), u' = 0 while stuck; the events are root functions: u' = 0 while
-/// sliding, F - k u = +-h while stuck. The equations of [`friction_fmu::models::oscillator::exact`],
-/// restated for a general integrator (the simulation solves each phase in closed form).
+/// sliding, F - k u = +-h while stuck. The equations of
+/// [`friction_fmu::models::oscillator::exact`], restated for a general integrator (the simulation
+/// solves each phase in closed form).
 pub struct Switch {
     pub plant: Forced,
     pub h: f64,

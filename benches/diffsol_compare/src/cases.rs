@@ -3,15 +3,15 @@
 
 use friction_fmu::friction::lugre2d::SlipLaw;
 use friction_fmu::friction::regularized::Regularized;
-use friction_fmu::models::transverse::table::{vr, TABLE};
-use friction_fmu::variables::values::ValueSet;
 use friction_fmu::models::oscillator::{Equations, Forced};
+use friction_fmu::models::transverse::table::{vr, TABLE};
 use friction_fmu::models::transverse::{
     tolerance_scales, Params, Transverse, COUPLED, DIM, LAMBDA, Q, VX, VY, W, X, Y, ZX, ZY,
 };
 use friction_fmu::models::Simulation;
 use friction_fmu::solve::dopri::{Switching, MAX_SWITCHES};
 use friction_fmu::solve::Ode;
+use friction_fmu::variables::values::ValueSet;
 use std::f64::consts::PI;
 
 pub struct Case {
@@ -89,10 +89,9 @@ pub fn oscillator(d: f64) -> Case {
     }
 }
 
-
 /// Scene T's ODE (paper T, continuous-time limit) for a prescribed drive velocity `vd`,
-/// built on the simulation's public `Params::contact` and `Params::drive_force`; the simulation's own
-/// `Equations` is private, so it is restated here and checked against the simulation in `main`.
+/// built on the simulation's public `Params::contact` and `Params::drive_force`; the simulation's
+/// own `Equations` is private, so it is restated here and checked against the simulation in `main`.
 pub struct TransverseOde {
     pub p: Params,
     pub vd: f64,

@@ -30,7 +30,8 @@ const EXTREMES: &[Extreme] = &[
     ("m 1e-6", &[("m", Real(1e-6))], L_PERIOD / 20.0, 60),
     ("step 1e-8", &[], 1e-8, 2000),
     ("step 1 s", &[], 1.0, 2),
-    // Only where a period costs a few steps whatever the stiffness (`cases` in src/report/stability.rs).
+    // Only where a period costs a few steps whatever the stiffness (`cases` in
+    // src/report/stability.rs).
     (
         "1e6 periods",
         &[("f", Real(1.0)), ("steps_per_period", Integer(8))],

@@ -5,8 +5,8 @@
 //! `FFx = FF e_x = kt z_x + ht(x') z_x' + hv x'`, `z_x' = x' - |x'|/g(x') z_x`, the power on
 //! the contact FF (v1 + v2) = FFx x'.
 //!
-//! The state is the general one's first `dim` entries, so the simulation's outputs read it unchanged:
-//! `[x', z_x, lambda]`, which the right-hand side reads, then y' and z_y at rest and the
+//! The state is the general one's first `dim` entries, so the simulation's outputs read it
+//! unchanged: `[x', z_x, lambda]`, which the right-hand side reads, then y' and z_y at rest and the
 //! quadratures `[x, w, q]` (q only when the mean force is read).
 
 use super::{
