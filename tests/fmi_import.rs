@@ -1,16 +1,20 @@
-//! Loads the packed `LongitudinalFriction.fmu` with the `fmi` crate, an FMI 2.0 importer written
-//! independently of this crate. Our other tests drive the model through our own code; this one
-//! only sees the binary and the modelDescription.xml inside the .fmu, the way a simulation tool
-//! does. It unzips the archive, parses the XML, dlopens the library and calls the fmi2* C
-//! functions. It reproduces one row of Table 1 of Leus & Gutowski 2008 (JTAM 46(1)).
+//! Loads the packed FMUs with the `fmi` crate, an FMI 2.0 importer written independently of this
+//! crate (the one fmi-sim is built on). Our other tests drive the models through our own code;
+//! these only see the binary and the modelDescription.xml inside the .fmu, the way a simulation
+//! tool does: the importer unzips the archive, parses the XML, dlopens the library and calls the
+//! fmi2* C functions. They reproduce one row of Table 1 of Leus & Gutowski 2008 (JTAM 46(1)), and
+//! run every model's default experiment.
 
 use std::path::PathBuf;
 
 use fmi::fmi2::import::Fmi2Import;
 use fmi::fmi2::instance::{CoSimulation, Common};
 use fmi::traits::FmiImport;
+use friction_fmu::fmi2::ffi::Status;
+use friction_fmu::importer::{ImportedInstance, Instantiation};
 use friction_fmu::models::longitudinal::table::TABLE;
-use friction_fmu::variables::variable::Kind;
+use friction_fmu::models::MODELS;
+use friction_fmu::variables::variable::{Causality, Kind};
 
 const MODEL: &str = "LongitudinalFriction";
 /// Vibration frequency (Hz); one vibration period is T = 1/F.
@@ -41,8 +45,8 @@ fn cdylib() -> PathBuf {
     lib
 }
 
-/// Packs the FMU into a fresh directory of its own; returns the directory and the .fmu path.
-fn pack(tag: &str) -> (PathBuf, PathBuf) {
+/// Packs `model`'s FMU into a fresh directory of its own; returns the directory and the .fmu path.
+fn pack(model: &'static str, tag: &str) -> (PathBuf, PathBuf) {
     let dir = std::env::temp_dir().join(format!(
         "friction-fmu-fmi-import-{}-{tag}",
         std::process::id()
@@ -52,11 +56,11 @@ fn pack(tag: &str) -> (PathBuf, PathBuf) {
     std::fs::create_dir_all(&dir).expect("create temp dir");
     let library = friction_fmu::package::Library {
         platform: "linux64",
-        model: MODEL,
+        model,
         variant: false,
         path: cdylib(),
     };
-    let fmu = friction_fmu::package::pack(MODEL, &[library], &dir).expect("pack the FMU");
+    let fmu = friction_fmu::package::pack(model, &[library], &dir).expect("pack the FMU");
     (dir, fmu)
 }
 
@@ -76,7 +80,7 @@ fn law_value(item: &str) -> i32 {
 /// Runs 40 periods of the paper's experiment for `law` at sliding velocity `vc`, the other
 /// parameters at the values of Table 1, and returns `(FT_mean, S)` at the end.
 fn simulate(law: &str, vc: f64) -> (f64, f64) {
-    let (dir, fmu_file) = pack(law);
+    let (dir, fmu_file) = pack(MODEL, law);
     let import: Fmi2Import = fmi::import::from_path(&fmu_file).expect("import the FMU");
     let md = import.model_description();
     let vr = |name: &str| {
@@ -151,4 +155,80 @@ fn coulomb_matches_closed_form() {
         rel < 1e-6,
         "FT_mean = {ft_mean} N, closed form {exact} N (rel. error {rel:.2e})"
     );
+}
+
+/// Every model's default experiment through the fmi crate, its DefaultExperiment and the value
+/// references of its outputs read from the packed modelDescription.xml. Oracle: the same calls
+/// through this crate's own importer, in-process: the same library code on the same inputs, so
+/// every Real output agrees to the bit.
+#[test]
+fn every_model_runs_its_default_experiment_as_through_our_importer() {
+    for model in MODELS {
+        let id = model.table.model_identifier;
+        let (dir, fmu_file) = pack(id, "default");
+        let import: Fmi2Import = fmi::import::from_path(&fmu_file).expect("import the FMU");
+        let md = import.model_description();
+        let experiment = md.default_experiment.as_ref().expect("a DefaultExperiment");
+        let start = experiment.start_time.unwrap_or(0.0);
+        let stop = experiment.stop_time.expect("stopTime");
+        let tolerance = experiment.tolerance;
+        let n = ((stop - start) / experiment.step_size.expect("stepSize")).round() as usize;
+        let t = |k: usize| start + (stop - start) * k as f64 / n as f64;
+        let outputs: Vec<(&str, u32)> = model
+            .table
+            .variables
+            .iter()
+            .filter(|v| v.causality == Causality::Output && matches!(v.kind, Kind::Real { .. }))
+            .map(|v| {
+                let in_xml = md
+                    .model_variable_by_name(v.name)
+                    .expect("the output in the XML");
+                assert_eq!(in_xml.value_reference, v.value_reference, "{id}.{}", v.name);
+                (v.name, v.value_reference)
+            })
+            .collect();
+        let vrs: Vec<u32> = outputs.iter().map(|&(_, vr)| vr).collect();
+
+        let mut theirs = vec![0.0; vrs.len()];
+        let mut fmu = import
+            .instantiate_cs("fmi_import", false, true)
+            .expect("fmi2Instantiate");
+        fmu.setup_experiment(tolerance, start, Some(stop))
+            .expect("fmi2SetupExperiment");
+        fmu.enter_initialization_mode()
+            .expect("fmi2EnterInitializationMode");
+        fmu.exit_initialization_mode()
+            .expect("fmi2ExitInitializationMode");
+        for k in 0..n {
+            fmu.do_step(t(k), t(k + 1) - t(k), true)
+                .unwrap_or_else(|e| panic!("{id}: fmi2DoStep at t = {:e}: {e}", t(k)));
+        }
+        fmu.get_real(&vrs, &mut theirs).expect("fmi2GetReal");
+        fmu.terminate().expect("fmi2Terminate");
+
+        let arguments = Instantiation::new(id, "reference").expect("a model of this crate");
+        let mut ours = ImportedInstance::instantiate(&arguments).expect("fmi2Instantiate");
+        assert_eq!(
+            ours.setup_experiment(tolerance, start, Some(stop)),
+            Status::Ok
+        );
+        assert_eq!(ours.enter_initialization_mode(), Status::Ok);
+        assert_eq!(ours.exit_initialization_mode(), Status::Ok);
+        for k in 0..n {
+            assert_eq!(
+                ours.do_step(t(k), t(k + 1) - t(k), true),
+                Status::Ok,
+                "{id}"
+            );
+        }
+        let (status, ours) = ours.get_real(&vrs);
+        assert_eq!(status, Status::Ok);
+        for ((name, _), (a, b)) in outputs.iter().zip(theirs.iter().zip(&ours)) {
+            assert!(
+                a.to_bits() == b.to_bits(),
+                "{id}.{name}: {a:e} through the fmi crate, {b:e} through ours"
+            );
+        }
+        let _ = std::fs::remove_dir_all(dir);
+    }
 }
