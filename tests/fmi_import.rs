@@ -77,6 +77,25 @@ fn law_value(item: &str) -> i32 {
         .unwrap_or_else(|| panic!("no item `{item}` in enumeration {type_name}"))
 }
 
+/// Sets the experiment up, initializes and steps to `stop` in `n` communication steps, on the
+/// points start + (stop - start) k / n: the last one is exactly `stop`.
+fn run<I: Common + CoSimulation>(
+    fmu: &mut I,
+    tolerance: Option<f64>,
+    (start, stop): (f64, f64),
+    n: usize,
+) {
+    let t = |k: usize| start + (stop - start) * k as f64 / n as f64;
+    fmu.setup_experiment(tolerance, start, Some(stop))
+        .expect("fmi2SetupExperiment");
+    Common::enter_initialization_mode(fmu).expect("fmi2EnterInitializationMode");
+    Common::exit_initialization_mode(fmu).expect("fmi2ExitInitializationMode");
+    for k in 0..n {
+        fmu.do_step(t(k), t(k + 1) - t(k), true)
+            .unwrap_or_else(|e| panic!("fmi2DoStep at t = {:e}: {e}", t(k)));
+    }
+}
+
 /// Runs 40 periods of the paper's experiment for `law` at sliding velocity `vc`, the other
 /// parameters at the values of Table 1, and returns `(FT_mean, S)` at the end.
 fn simulate(law: &str, vc: f64) -> (f64, f64) {
@@ -108,20 +127,12 @@ fn simulate(law: &str, vc: f64) -> (f64, f64) {
     let values: Vec<f64> = params.iter().map(|&(_, value)| value).collect();
     fmu.set_real(&vrs, &values).expect("fmi2SetReal parameters");
 
-    let n = PERIODS * STEPS_PER_PERIOD;
-    let t_end = PERIODS as f64 / F;
-    // Communication points t_k = t_end k / n: the last one is exactly t_end.
-    let t = |k: usize| t_end * k as f64 / n as f64;
-    fmu.setup_experiment(None, 0.0, Some(t_end))
-        .expect("fmi2SetupExperiment");
-    fmu.enter_initialization_mode()
-        .expect("fmi2EnterInitializationMode");
-    fmu.exit_initialization_mode()
-        .expect("fmi2ExitInitializationMode");
-    for k in 0..n {
-        fmu.do_step(t(k), t(k + 1) - t(k), true)
-            .unwrap_or_else(|e| panic!("fmi2DoStep at t = {:e}: {e}", t(k)));
-    }
+    run(
+        &mut fmu,
+        None,
+        (0.0, PERIODS as f64 / F),
+        PERIODS * STEPS_PER_PERIOD,
+    );
 
     let mut out = [0.0; 2];
     fmu.get_real(&[vr("FT_mean"), vr("S")], &mut out)
@@ -193,16 +204,7 @@ fn every_model_runs_its_default_experiment_as_through_our_importer() {
         let mut fmu = import
             .instantiate_cs("fmi_import", false, true)
             .expect("fmi2Instantiate");
-        fmu.setup_experiment(tolerance, start, Some(stop))
-            .expect("fmi2SetupExperiment");
-        fmu.enter_initialization_mode()
-            .expect("fmi2EnterInitializationMode");
-        fmu.exit_initialization_mode()
-            .expect("fmi2ExitInitializationMode");
-        for k in 0..n {
-            fmu.do_step(t(k), t(k + 1) - t(k), true)
-                .unwrap_or_else(|e| panic!("{id}: fmi2DoStep at t = {:e}: {e}", t(k)));
-        }
+        run(&mut fmu, tolerance, (start, stop), n);
         fmu.get_real(&vrs, &mut theirs).expect("fmi2GetReal");
         fmu.terminate().expect("fmi2Terminate");
 
