@@ -311,7 +311,7 @@ def test_a_plain_absolute_resource_path_is_taken_like_its_file_uri(packed, monke
     (("inputs = []", "inputs = []  # unchanged control"), None),
 ])
 def test_bad_variant_fails_the_build_with_its_message(tmp_path, change, fragments):
-    """Oracle: the format (README, src/variant): the build exits non-zero, names the file and
+    """Oracle: the format (docs/variants.md, src/variant): the build exits non-zero, names the file and
     the key, and writes no FMU; the unchanged control file builds."""
     text = (ROOT / "variants" / "fig4a.toml").read_text()
     assert change[0] in text
