@@ -25,6 +25,7 @@ use super::{require_finite, require_non_negative, require_positive, Scope, Simul
 use crate::friction::regularized::{stiction_excess, Regularized};
 use crate::models::oscillator::table::{vr, TABLE};
 use crate::solve::adaptive::Adaptive;
+use crate::solve::radau::StepPolynomial;
 use crate::solve::{shooting, within_step_budget, Ode, Work};
 use crate::variables::values::ValueSet;
 use exact::{Event, Mode, State, Switch};
@@ -175,9 +176,36 @@ impl PeriodMax {
     }
 }
 
+/// A radau5 step taken past the communication point: the calls that end inside it read the
+/// state from its polynomial instead of each taking a step of its own, which at communication
+/// steps far shorter than the solver's is nearly every call. Only while the force is prescribed:
+/// an input may change at every call, and the step would no longer be the motion's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Ahead {
+    step: StepPolynomial,
+    /// (t, u, u', W) at the step's end, where the integration goes on from.
+    end: [f64; 4],
+    /// The largest |u| from where the step was taken to its end, for the amplitude once the
+    /// communication points reach the end.
+    largest: f64,
+}
+
+/// What the steps taken ahead take in a saved state: the longest one, a flag, the polynomial
+/// of at most 3 states, the end and the largest |u|.
+const AHEAD_SAVED: usize = 2 + StepPolynomial::saved_len(3) + 4 + 1;
+
+/// The numbers of a saved state without the step ahead.
+const STATE_SAVED: usize = 10;
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Oscillator {
     core: Core,
+    /// Steps may be taken past the communication point ([`Ahead`]): radau5, force prescribed.
+    looks_ahead: bool,
+    ahead: Option<Ahead>,
+    /// The longest step to take ahead: one whose polynomial is read within the tolerance
+    /// ([`StepPolynomial::interior_error`]), as the last one taken shows.
+    ahead_limit: f64,
     state: State,
     /// The input force held over the current step.
     held: f64,
@@ -355,8 +383,16 @@ impl Oscillator {
             Core::Exact(switch) => switch.initial_mode(start_time, u0, v0, held),
             Core::Regularized(..) => Mode::Sliding(1.0),
         };
+        let looks_ahead = matches!(
+            &core,
+            Core::Regularized(equations, Solver::Adaptive(Adaptive::Radau5(_)))
+                if !equations.plant.input
+        );
         Ok(Oscillator {
             core,
+            looks_ahead,
+            ahead: None,
+            ahead_limit: f64::MAX,
             state: State {
                 t: start_time,
                 u: u0,
@@ -412,6 +448,7 @@ impl Oscillator {
         t_end: f64,
         log: Option<&mut Vec<Event>>,
         at_start: &Work,
+        mut last: Option<&mut StepPolynomial>,
     ) -> Result<f64, String> {
         let held = self.held;
         match &mut self.core {
@@ -444,7 +481,16 @@ impl Oscillator {
                     let start = [self.state.u, self.state.v, self.state.dissipated];
                     let probe = tracks.then(|| solver.clone());
                     let mut y = start;
-                    solver.integrate(&*equations, t0, t1, &mut y, &mut self.work)?;
+                    match last.as_deref_mut() {
+                        Some(last) => solver.integrate_keeping(
+                            equations,
+                            (t0, t1),
+                            &mut y,
+                            &mut self.work,
+                            last,
+                        )?,
+                        None => solver.integrate(&*equations, t0, t1, &mut y, &mut self.work)?,
+                    }
                     if let Some(probe) = probe.filter(|_| start[1] * y[1] < 0.0) {
                         let extreme =
                             turning_point(equations, probe, (t0, start), (t1, y), &mut self.work)?;
@@ -457,6 +503,88 @@ impl Oscillator {
                     largest = largest.max(y[0].abs());
                 }
                 Ok(largest)
+            }
+        }
+    }
+
+    /// Answers a step ending at `t_end` from the step taken ahead, if there is one: inside it,
+    /// from its polynomial (true); at or past its end, by going on from there (true if `t_end`
+    /// is its end, to round-off; false if the loop must go on).
+    fn read_ahead(&mut self, t_end: f64) -> bool {
+        let Some(ahead) = self.ahead else {
+            return false;
+        };
+        let slack = self.amplitude.slack(t_end);
+        if t_end < ahead.end[0] - slack {
+            let y = ahead.step.at(t_end);
+            self.set_motion(t_end, &y);
+            return true;
+        }
+        self.ahead = None;
+        self.set_motion(ahead.end[0], &ahead.end[1..]);
+        self.amplitude
+            .add(ahead.largest, ahead.end[0], self.state.u.abs());
+        if t_end <= ahead.end[0] + slack {
+            self.state.t = t_end;
+            true
+        } else {
+            false
+        }
+    }
+
+    /// (t, u, u', W) from `y` = (u, u', W); W only where it is integrated.
+    fn set_motion(&mut self, t: f64, y: &[f64]) {
+        self.state.t = t;
+        self.state.u = y[0];
+        self.state.v = y[1];
+        if let Core::Regularized(equations, _) = &self.core {
+            if equations.with_work {
+                self.state.dissipated = y[2];
+            }
+        }
+    }
+
+    /// Where steps may be taken ahead and the solver's next step reaches past `t_end` (and not
+    /// past the period's `boundary`): takes that step and reads the state at `t_end` from it
+    /// (true). False, with nothing changed but the work, where it may not or its last step
+    /// does not hold `t_end` (a rejection or a kink cut it).
+    fn look_ahead(&mut self, t_end: f64, boundary: f64, at_start: &Work) -> Result<bool, String> {
+        let Core::Regularized(_, solver) = &self.core else {
+            return Ok(false);
+        };
+        let hint = solver.adaptive().map_or(0.0, Adaptive::step_hint);
+        let t = self.state.t;
+        let end = (t + hint.min(self.max_substep).min(self.ahead_limit)).min(boundary);
+        if !self.looks_ahead || end <= t_end + self.amplitude.slack(t_end) {
+            return Ok(false);
+        }
+        let before = self.state;
+        let mut step = StepPolynomial::NONE;
+        let largest = self.advance(end, None, at_start, Some(&mut step))?;
+        let Core::Regularized(equations, Solver::Adaptive(adaptive)) = &mut self.core else {
+            return Ok(false);
+        };
+        let mut readable = step.h > 0.0 && step.t <= t_end;
+        if let (true, Adaptive::Radau5(radau)) = (readable, &*adaptive) {
+            let error = step.interior_error(&*equations, radau, &mut self.work);
+            self.ahead_limit = step.h * (0.9 * error.max(1e-10).powf(-0.25)).clamp(0.2, 4.0);
+            readable = error <= 1.0;
+        }
+        match Some(step).filter(|_| readable) {
+            Some(step) => {
+                let s = self.state;
+                self.ahead = Some(Ahead {
+                    step,
+                    end: [s.t, s.u, s.v, s.dissipated],
+                    largest,
+                });
+                self.set_motion(t_end, &step.at(t_end));
+                Ok(true)
+            }
+            None => {
+                adaptive.set_step_hint(hint);
+                self.state = before;
+                Ok(false)
             }
         }
     }
@@ -474,7 +602,8 @@ impl Oscillator {
         self.held = held;
         let t_end = self.state.t + h;
         let at_start = self.work;
-        while self.state.t < t_end {
+        let done = self.read_ahead(t_end);
+        while !done && self.state.t < t_end {
             within_step_budget(&self.work, &at_start, self.state.t)?;
             let boundary = if self.tracks_amplitude {
                 self.amplitude.next_boundary()
@@ -490,7 +619,10 @@ impl Oscillator {
                 } else {
                     t_end
                 };
-            let largest = self.advance(segment_end, log.as_deref_mut(), &at_start)?;
+            if segment_end == t_end && self.look_ahead(t_end, boundary, &at_start)? {
+                break;
+            }
+            let largest = self.advance(segment_end, log.as_deref_mut(), &at_start, None)?;
             self.state.t = segment_end;
             self.amplitude.add(largest, segment_end, self.state.u.abs());
         }
@@ -626,10 +758,39 @@ impl Simulation for Oscillator {
             step_hint,
             self.state.dissipated,
         ]);
+        out.push(self.ahead_limit);
+        match &self.ahead {
+            Some(ahead) => {
+                out.push(1.0);
+                ahead.step.write(3, out);
+                out.extend_from_slice(&ahead.end);
+                out.push(ahead.largest);
+            }
+            None => out.resize(STATE_SAVED + AHEAD_SAVED, 0.0),
+        }
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
-        super::check_saved(TABLE.model_identifier, state, 10)?;
+        super::check_saved(TABLE.model_identifier, state, STATE_SAVED + AHEAD_SAVED)?;
+        let (ahead_limit, ahead) = (state[STATE_SAVED], &state[STATE_SAVED + 1..]);
+        let ahead = match ahead[0] {
+            0.0 => None,
+            _ => {
+                let (step, rest) = ahead[1..].split_at(StepPolynomial::saved_len(3));
+                let step = StepPolynomial::read(3, step).filter(|_| self.looks_ahead);
+                let Some(step) = step else {
+                    return Err(format!(
+                        "a {} state holds a step taken ahead that this simulation cannot take",
+                        TABLE.model_identifier
+                    ));
+                };
+                Some(Ahead {
+                    step,
+                    end: [rest[0], rest[1], rest[2], rest[3]],
+                    largest: rest[4],
+                })
+            }
+        };
         match Mode::from_code(state[3]) {
             Some(mode) => {
                 self.state = State {
@@ -648,6 +809,8 @@ impl Simulation for Oscillator {
                         a.set_step_hint(state[8]);
                     }
                 }
+                self.ahead = ahead;
+                self.ahead_limit = ahead_limit;
                 Ok(())
             }
             None => Err(format!(

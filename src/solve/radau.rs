@@ -69,6 +69,99 @@ pub struct Radau5 {
     pub max_steps: u64,
 }
 
+/// One accepted step's collocation polynomial: through `y` at `t` and `y + z_s` at the nodes
+/// `t + c_s h` (Radau IIA's continuous output, order 3 inside the step, the order of the
+/// embedded error estimate that accepted the step).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepPolynomial {
+    pub t: f64,
+    /// 0 before the first step.
+    pub h: f64,
+    n: usize,
+    y: [f64; MAX_DIM],
+    z: [f64; N3],
+}
+
+impl StepPolynomial {
+    /// No step yet (`h` = 0).
+    pub const NONE: StepPolynomial = StepPolynomial {
+        t: 0.0,
+        h: 0.0,
+        n: 0,
+        y: [0.0; MAX_DIM],
+        z: [0.0; N3],
+    };
+
+    /// The state at `t` (inside the step).
+    pub fn at(&self, t: f64) -> [f64; MAX_DIM] {
+        collocation(&TABLEAU, self.n, &self.y, &self.z, (t - self.t) / self.h)
+    }
+
+    /// The polynomial's error inside the step, estimated in units of `solver`'s tolerance: the
+    /// step times its defect u' - f(u) at the middle, between the nodes where it is 0 (one
+    /// right-hand side). At the step's end the method is of order 5, inside of
+    /// order 3, so a step the error control accepts may be too long to be read inside.
+    pub fn interior_error(&self, ode: &dyn Ode, solver: &Radau5, work: &mut Work) -> f64 {
+        let n = self.n;
+        let (middle, eps) = (self.t + 0.5 * self.h, 1e-3 * self.h);
+        let u = self.at(middle);
+        let (before, after) = (self.at(middle - eps), self.at(middle + eps));
+        let mut f = [0.0; MAX_DIM];
+        eval(ode, middle, &u[..n], &mut f[..n], work);
+        let atols = solver.atols();
+        (0..n)
+            .map(|i| {
+                let defect = (after[i] - before[i]) / (2.0 * eps) - f[i];
+                self.h * defect.abs() / (atols[i] + solver.rtol * u[i].abs())
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// How many numbers [`StepPolynomial::write`] writes for systems of at most `dim` states.
+    pub const fn saved_len(dim: usize) -> usize {
+        3 + dim * (1 + STAGES)
+    }
+
+    /// Appends the polynomial of a system of at most `dim` states, as numbers.
+    pub fn write(&self, dim: usize, out: &mut Vec<f64>) {
+        out.extend_from_slice(&[self.t, self.h, self.n as f64]);
+        out.extend_from_slice(&self.y[..dim]);
+        for s in 0..STAGES {
+            for i in 0..dim {
+                out.push(if i < self.n {
+                    self.z[s * self.n + i]
+                } else {
+                    0.0
+                });
+            }
+        }
+    }
+
+    /// Reads what [`StepPolynomial::write`] wrote; None if it is not such a polynomial.
+    pub fn read(dim: usize, numbers: &[f64]) -> Option<StepPolynomial> {
+        let &[t, h, n, ref rest @ ..] = numbers else {
+            return None;
+        };
+        if rest.len() != dim * (1 + STAGES) || dim > MAX_DIM || !(0.0..=dim as f64).contains(&n) {
+            return None;
+        }
+        let n = n as usize;
+        let mut polynomial = StepPolynomial {
+            t,
+            h,
+            n,
+            ..StepPolynomial::NONE
+        };
+        polynomial.y[..dim].copy_from_slice(&rest[..dim]);
+        for s in 0..STAGES {
+            for i in 0..n {
+                polynomial.z[s * n + i] = rest[dim * (1 + s) + i];
+            }
+        }
+        Some(polynomial)
+    }
+}
+
 impl Radau5 {
     pub fn new(rtol: f64, atol: f64, h_max: f64) -> Self {
         Radau5 {
@@ -450,7 +543,7 @@ impl Integrator for Radau5 {
         y: &mut [f64],
         work: &mut Work,
     ) -> Result<(), String> {
-        self.run(ode, None, t0, t1, y, work)
+        self.run(ode, None, (t0, t1), y, work, None)
     }
 }
 
@@ -509,18 +602,34 @@ impl Radau5 {
         y: &mut [f64],
         work: &mut Work,
     ) -> Result<(), String> {
-        self.run(ode, Some(ode), t0, t1, y, work)
+        self.run(ode, Some(ode), (t0, t1), y, work, None)
+    }
+
+    /// [`Radau5::integrate_switched`], leaving the last step it accepts in `last` (`h` = 0
+    /// if it accepts none).
+    pub fn integrate_switched_keeping(
+        &mut self,
+        ode: &dyn Switching,
+        (t0, t1): (f64, f64),
+        y: &mut [f64],
+        work: &mut Work,
+        last: &mut StepPolynomial,
+    ) -> Result<(), String> {
+        self.run(ode, Some(ode), (t0, t1), y, work, Some(last))
     }
 
     fn run(
         &mut self,
         ode: &dyn Ode,
         switching: Option<&dyn Switching>,
-        t0: f64,
-        t1: f64,
+        (t0, t1): (f64, f64),
         y: &mut [f64],
         work: &mut Work,
+        mut last: Option<&mut StepPolynomial>,
     ) -> Result<(), String> {
+        if let Some(last) = last.as_deref_mut() {
+            last.h = 0.0;
+        }
         let n = ode.dim();
         if n > MAX_DIM || y.len() < n {
             return Err(format!("Radau5: {n} states exceed the limit of {MAX_DIM}"));
@@ -736,6 +845,16 @@ impl Radau5 {
                     Verdict::Keep { cap: c } => cap = c,
                 }
             }
+            if let Some(last) = last.as_deref_mut() {
+                *last = StepPolynomial {
+                    t,
+                    h: h_try,
+                    n,
+                    y: [0.0; MAX_DIM],
+                    z,
+                };
+                last.y[..n].copy_from_slice(&y[..n]);
+            }
             y[..n].copy_from_slice(&y1[..n]);
             if y[..n].iter().any(|x| !x.is_finite()) {
                 return Err(format!("Radau5: the solution became non-finite at t = {t}"));
@@ -752,7 +871,14 @@ impl Radau5 {
                 } else {
                     h_try * fac
                 };
-                h = if clamped { h.max(proposal) } else { proposal }.min(h_max);
+                // A step clamped to the end of the call is the call's last: what it proposes
+                // is kept for the next call (h_next) up to the longest step, not this call's
+                // span, so that a caller may step past a short call's end.
+                h = if clamped {
+                    h.max(proposal).min(self.h_max)
+                } else {
+                    proposal.min(h_max)
+                };
                 // After a step cut short at a kink, go on with the step that was cut.
                 if let Some(before) = resume.take() {
                     h = h.max(before).min(h_max);

@@ -7,7 +7,7 @@ use crate::friction::regularized::Regularized;
 use crate::models::switch::OscillatorSolver;
 use crate::solve::adaptive::Adaptive;
 use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
-use crate::solve::radau::Radau5;
+use crate::solve::radau::{Radau5, StepPolynomial};
 use crate::solve::rk4::Rk4;
 use crate::solve::{Integrator, Work, MAX_DIM};
 
@@ -72,6 +72,27 @@ impl Solver {
         match self {
             Solver::Adaptive(a) => a.integrate_switched(equations, t0, t1, y, work),
             Solver::Rk4(r) => r.integrate(equations, t0, t1, y, work),
+        }
+    }
+
+    /// [`Solver::integrate`], leaving radau5's last accepted step in `last` (`h` = 0 for the
+    /// other solvers, or if none was accepted).
+    pub fn integrate_keeping(
+        &mut self,
+        equations: &Equations,
+        (t0, t1): (f64, f64),
+        y: &mut [f64],
+        work: &mut Work,
+        last: &mut StepPolynomial,
+    ) -> Result<(), String> {
+        match self {
+            Solver::Adaptive(Adaptive::Radau5(r)) => {
+                r.integrate_switched_keeping(equations, (t0, t1), y, work, last)
+            }
+            _ => {
+                last.h = 0.0;
+                self.integrate(equations, t0, t1, y, work)
+            }
         }
     }
 }

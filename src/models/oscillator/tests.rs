@@ -553,3 +553,79 @@ fn a_periodic_start_is_steady_from_the_first_period() {
     let refused = Oscillator::new(&v, 0.0).unwrap_err();
     assert!(refused.contains("force_source = prescribed"), "{refused}");
 }
+
+/// Communication steps far shorter than radau5's: the calls that end inside a step taken ahead
+/// read its polynomial, so a hundred calls of 1e-4 s cost about one step, and every point read
+/// that way is within the tolerance of a run at rtol 1e-12 (calling every 0.1 s), as a run at
+/// the same tolerance calling every 0.1 s is. The amplitude agrees too.
+#[test]
+fn short_communication_steps_read_a_step_taken_ahead() {
+    let v = values("trigonometric");
+    let mut tight = v.clone();
+    tight.set(vr::RTOL, 1e-12);
+    tight.set(vr::ATOL, 1e-12);
+    let stop = 2.0 * TAU;
+    let mut reference = Oscillator::new(&tight, 0.0).unwrap();
+    let mut stepped = Oscillator::new(&v, 0.0).unwrap();
+    let mut sim = Oscillator::new(&v, 0.0).unwrap();
+    let (h, per_point) = (1e-4, 1000);
+    let (mut worst, mut worst_stepped): (f64, f64) = (0.0, 0.0);
+    let mut calls = 0;
+    let off = |a: State, b: State| {
+        assert!((a.t - b.t).abs() < 1e-9, "{} {}", a.t, b.t);
+        // In units of the tolerance, atol + rtol |y| (1e-9 each).
+        [(a.u, b.u), (a.v, b.v), (a.dissipated, b.dissipated)]
+            .iter()
+            .map(|(x, y)| (x - y).abs() / (1e-9 + 1e-9 * y.abs()))
+            .fold(0.0_f64, f64::max)
+    };
+    while reference.time() + 0.1 < stop {
+        reference.do_step(0.1, &tight).unwrap();
+        stepped.do_step(0.1, &v).unwrap();
+        for _ in 0..per_point {
+            sim.do_step(h, &v).unwrap();
+            calls += 1;
+        }
+        worst = worst.max(off(sim.state(), reference.state()));
+        worst_stepped = worst_stepped.max(off(stepped.state(), reference.state()));
+    }
+    assert!(
+        worst < 1.0 && worst_stepped < 1.0,
+        "{worst} {worst_stepped}"
+    );
+    assert!(sim.amplitude.completed == 1 && reference.amplitude.completed == 1);
+    assert!(
+        (sim.amplitude() - reference.amplitude()).abs() < 1e-8,
+        "{} {}",
+        sim.amplitude(),
+        reference.amplitude()
+    );
+    assert!(
+        sim.work.steps * 50 < calls,
+        "{} steps for {calls} calls",
+        sim.work.steps
+    );
+}
+
+/// A state saved while a step taken ahead is being read holds that step: restored, the run
+/// goes on to the same bits.
+#[test]
+fn a_state_saved_inside_a_step_taken_ahead_replays_the_motion() {
+    let v = values("trigonometric");
+    let mut sim = Oscillator::new(&v, 0.0).unwrap();
+    for _ in 0..3000 {
+        sim.do_step(1e-3, &v).unwrap();
+    }
+    assert!(sim.ahead.is_some());
+    let saved = sim.save();
+    for _ in 0..3000 {
+        sim.do_step(1e-3, &v).unwrap();
+    }
+    let after = sim.save();
+    let mut other = Oscillator::new(&v, 0.0).unwrap();
+    other.restore(&saved).unwrap();
+    for _ in 0..3000 {
+        other.do_step(1e-3, &v).unwrap();
+    }
+    assert_eq!(other.save(), after);
+}
