@@ -16,7 +16,8 @@ mod tests {
 
     /// Every table is self-consistent: unique names and value references, start values inside
     /// their ranges, enumeration defaults that name an item, output dependencies on inputs,
-    /// units declared in the unit table (the XML writer drops a unit it cannot find).
+    /// units declared in the unit table (the XML writer drops a unit it cannot find), and a
+    /// DefaultExperiment whose grid is whole and whose tolerance is the one integrated to.
     #[test]
     fn every_table_is_consistent() {
         for table in crate::models::MODELS.iter().map(|m| m.table) {
@@ -65,6 +66,16 @@ mod tests {
                 }
             }
             let experiment = table.default_experiment;
+            // The DefaultExperiment states the tolerance the FMU integrates to by default.
+            if let Some(name) = table.tolerance_parameter {
+                let tolerance = table.by_name(name).expect("the tolerance parameter");
+                assert_eq!(
+                    ValueSet::start(table).real(tolerance.value_reference),
+                    experiment.tolerance,
+                    "{}: DefaultExperiment tolerance",
+                    table.model_identifier
+                );
+            }
             assert_eq!(
                 communication_grid(
                     experiment.start_time,

@@ -306,7 +306,7 @@ pub const TABLE: ModelTable = ModelTable {
         // 42 vibration periods at 60 kHz, reported every microsecond (a whole number of
         // nanoseconds, as co-simulation engines' clocks need; 1/60 kHz is not).
         stop_time: 7e-4,
-        tolerance: 1e-6,
+        tolerance: 1e-8,
         step_size: 1e-6,
     },
 };
