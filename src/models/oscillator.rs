@@ -10,7 +10,11 @@
 //!
 //! `u_amplitude` is max |u| over the last complete forcing period `2 pi/w`, counted from the
 //! start time. The exact core meets every extreme of u as an event; the regularised core finds
-//! extremes inside a sub-step on the cubic Hermite interpolant of (u, u') at its ends.
+//! an extreme inside a sub-step by re-integrating to where u' = 0 ([`turning_point`]).
+//!
+//! With the force prescribed and radau5, a communication step shorter than the solver's next
+//! step takes that step past the communication point and reads the state there from the step's
+//! polynomial; the calls that follow inside the step read it too ([`Ahead`]).
 
 pub mod exact;
 mod solver;
