@@ -70,8 +70,8 @@ pub struct Radau5 {
 }
 
 /// One accepted step's collocation polynomial: through `y` at `t` and `y + z_s` at the nodes
-/// `t + c_s h` (Radau IIA's continuous output, order 3 inside the step, the order of the
-/// embedded error estimate that accepted the step).
+/// `t + c_s h` (Radau IIA's continuous output: of order 3 inside the step, where the step's end
+/// is of order 5).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StepPolynomial {
     pub t: f64,
@@ -99,8 +99,8 @@ impl StepPolynomial {
 
     /// The polynomial's error inside the step, estimated in units of `solver`'s tolerance: the
     /// step times its defect u' - f(u) at the middle, between the nodes where it is 0 (one
-    /// right-hand side). At the step's end the method is of order 5, inside of
-    /// order 3, so a step the error control accepts may be too long to be read inside.
+    /// right-hand side). A step the error control accepts at its end may be too long to be
+    /// read inside.
     pub fn interior_error(&self, ode: &dyn Ode, solver: &Radau5, work: &mut Work) -> f64 {
         let n = self.n;
         let (middle, eps) = (self.t + 0.5 * self.h, 1e-3 * self.h);
