@@ -17,6 +17,11 @@ impl Dahl {
 
     pub fn rate(&self, z: f64, v: f64) -> f64 {
         let u = 1.0 - self.kt / self.fc * sgn(v) * z;
+        // The paper's alpha = 1 (the default) without the power, the same number: a power is
+        // most of the rate's cost.
+        if self.alpha == 1.0 {
+            return v * u;
+        }
         v * sgn(u) * u.abs().powf(self.alpha)
     }
 
@@ -80,7 +85,27 @@ impl Dahl {
 
 #[cfg(test)]
 mod tests {
-    use super::Dahl;
+    use super::{sgn, Dahl};
+
+    /// alpha = 1 skips the power and gives its number to the bit, over deflections on both
+    /// sides of saturation and both directions of slip.
+    #[test]
+    fn alpha_one_is_the_power_law_to_the_bit() {
+        let law = Dahl {
+            kt: 5.6e4,
+            fc: 0.01962,
+            alpha: 1.0,
+        };
+        let z_saturated = law.fc / law.kt;
+        for i in -300..=300 {
+            let z = f64::from(i) / 200.0 * z_saturated;
+            for v in [-0.41, -1e-9, 0.0, 3e-7, 0.146] {
+                let u = 1.0 - law.kt / law.fc * sgn(v) * z;
+                let power = v * sgn(u) * u.abs().powf(1.0);
+                assert_eq!(law.rate(z, v).to_bits(), power.to_bits(), "z {z} v {v}");
+            }
+        }
+    }
 
     /// Below alpha 1 the exact update is `slack` short of saturation at the predicted distance,
     /// and saturated just past the distance for no slack.
