@@ -10,9 +10,9 @@
 use friction_fmu::friction::dahl::Dahl;
 use friction_fmu::models::oscillator::{Equations as OscillatorEquations, Forced};
 use friction_fmu::models::transverse::{Equations as TransverseEquations, COUPLED, DIM, Q};
+use friction_fmu::solve::phase::cos_turns;
 use friction_fmu::solve::Ode;
 use std::cell::Cell;
-use std::f64::consts::TAU;
 
 /// y' = f(t, y) over `y.len()` states, and root functions for the events of a reading.
 pub trait Problem {
@@ -76,7 +76,7 @@ pub struct Longitudinal {
 impl Problem for Longitudinal {
     #[inline]
     fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-        let v = self.vc + self.va * (TAU * (t * self.f).fract()).cos();
+        let v = self.vc + self.va * cos_turns(t * self.f);
         dy[0] = self.law.rate(y[0], v);
         if dy.len() > 1 {
             dy[1] = self.law.force(y[0]);
