@@ -12,9 +12,9 @@
 //! start time. The exact core meets every extreme of u as an event; the regularised core finds
 //! an extreme inside a sub-step by re-integrating to where u' = 0 ([`turning_point`]).
 //!
-//! With the force prescribed and radau5, a communication step shorter than the solver's next
-//! step takes that step past the communication point and reads the state there from the step's
-//! polynomial; the calls that follow inside the step read it too ([`Ahead`]).
+//! With the force prescribed and radau5, a communication step of at most a quarter of the step
+//! the solver proposes takes that step past the communication point and reads the state there
+//! from the step's polynomial; the calls that follow inside the step read it too ([`Ahead`]).
 
 pub mod exact;
 mod solver;
@@ -194,9 +194,12 @@ struct Ahead {
     largest: f64,
 }
 
-/// What the steps taken ahead take in a saved state: the longest one, a flag, the polynomial
-/// of at most 3 states, the end and the largest |u|.
-const AHEAD_SAVED: usize = 2 + StepPolynomial::saved_len(3) + 4 + 1;
+/// What the steps taken ahead take in a saved state: radau5's proposed step, the longest one to
+/// take ahead, a flag, the polynomial of at most 3 states, the end and the largest |u|.
+const AHEAD_SAVED: usize = 3 + StepPolynomial::saved_len(3) + 4 + 1;
+
+/// The fewest communication steps a step taken ahead must hold ([`Oscillator::look_ahead`]).
+const CALLS_AHEAD: f64 = 4.0;
 
 /// The numbers of a saved state without the step ahead.
 const STATE_SAVED: usize = 10;
@@ -553,44 +556,46 @@ impl Oscillator {
     /// (true). False, with nothing changed but the work, where it may not or its last step
     /// does not hold `t_end` (a rejection or a kink cut it).
     fn look_ahead(&mut self, t_end: f64, boundary: f64, at_start: &Work) -> Result<bool, String> {
-        let Core::Regularized(_, solver) = &self.core else {
+        let Core::Regularized(_, Solver::Adaptive(Adaptive::Radau5(radau))) = &mut self.core else {
             return Ok(false);
         };
-        let hint = solver.adaptive().map_or(0.0, Adaptive::step_hint);
+        let hints = (radau.h_next, radau.h_proposed);
         let t = self.state.t;
-        let end = (t + hint.min(self.max_substep).min(self.ahead_limit)).min(boundary);
-        if !self.looks_ahead || end <= t_end + self.amplitude.slack(t_end) {
+        let end = (t + hints.1.min(self.max_substep).min(self.ahead_limit)).min(boundary);
+        // Only a step that holds several calls pays for its reading and for the steps a
+        // proposal taken from a short call's last step has rejected.
+        if !self.looks_ahead || end - t < CALLS_AHEAD * (t_end - t) {
             return Ok(false);
         }
+        // The step ahead is the one proposed, not the call's last cut to its span.
+        radau.h_next = end - t;
         let before = self.state;
         let mut step = StepPolynomial::NONE;
         let largest = self.advance(end, None, at_start, Some(&mut step))?;
-        let Core::Regularized(equations, Solver::Adaptive(adaptive)) = &mut self.core else {
+        let Core::Regularized(equations, Solver::Adaptive(Adaptive::Radau5(radau))) =
+            &mut self.core
+        else {
             return Ok(false);
         };
         let mut readable = step.h > 0.0 && step.t <= t_end;
-        if let (true, Adaptive::Radau5(radau)) = (readable, &*adaptive) {
+        if readable {
             let error = step.interior_error(&*equations, radau, &mut self.work);
             self.ahead_limit = step.h * (0.9 * error.max(1e-10).powf(-0.25)).clamp(0.2, 4.0);
             readable = error <= 1.0;
         }
-        match Some(step).filter(|_| readable) {
-            Some(step) => {
-                let s = self.state;
-                self.ahead = Some(Ahead {
-                    step,
-                    end: [s.t, s.u, s.v, s.dissipated],
-                    largest,
-                });
-                self.set_motion(t_end, &step.at(t_end));
-                Ok(true)
-            }
-            None => {
-                adaptive.set_step_hint(hint);
-                self.state = before;
-                Ok(false)
-            }
+        if !readable {
+            (radau.h_next, radau.h_proposed) = hints;
+            self.state = before;
+            return Ok(false);
         }
+        let s = self.state;
+        self.ahead = Some(Ahead {
+            step,
+            end: [s.t, s.u, s.v, s.dissipated],
+            largest,
+        });
+        self.set_motion(t_end, &step.at(t_end));
+        Ok(true)
     }
 
     /// Like [`Simulation::do_step`], recording every stick/slip event of the exact core in `log`.
@@ -762,7 +767,11 @@ impl Simulation for Oscillator {
             step_hint,
             self.state.dissipated,
         ]);
-        out.push(self.ahead_limit);
+        let proposed = match &self.core {
+            Core::Regularized(_, Solver::Adaptive(Adaptive::Radau5(radau))) => radau.h_proposed,
+            _ => 0.0,
+        };
+        out.extend_from_slice(&[proposed, self.ahead_limit]);
         match &self.ahead {
             Some(ahead) => {
                 out.push(1.0);
@@ -776,7 +785,8 @@ impl Simulation for Oscillator {
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
         super::check_saved(TABLE.model_identifier, state, STATE_SAVED + AHEAD_SAVED)?;
-        let (ahead_limit, ahead) = (state[STATE_SAVED], &state[STATE_SAVED + 1..]);
+        let (proposed, ahead_limit) = (state[STATE_SAVED], state[STATE_SAVED + 1]);
+        let ahead = &state[STATE_SAVED + 2..];
         let ahead = match ahead[0] {
             0.0 => None,
             _ => {
@@ -811,6 +821,9 @@ impl Simulation for Oscillator {
                 if let Core::Regularized(_, solver) = &mut self.core {
                     if let Some(a) = solver.adaptive_mut() {
                         a.set_step_hint(state[8]);
+                    }
+                    if let Solver::Adaptive(Adaptive::Radau5(radau)) = solver {
+                        radau.h_proposed = proposed;
                     }
                 }
                 self.ahead = ahead;

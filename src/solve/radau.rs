@@ -65,6 +65,11 @@ pub struct Radau5 {
     /// Step size to try next; 0 lets the integrator pick one. Carried across calls (and saved
     /// with the model's state) so each communication step does not start from scratch.
     pub h_next: f64,
+    /// The step the controller proposed after the last step, before the end of the call cut
+    /// it to the call's span: how far a caller that reads its points from the step's polynomial
+    /// may step past them (h_next, the start of the next call, stays within the span, where
+    /// it takes fewer rejections).
+    pub h_proposed: f64,
     /// The most steps (accepted or rejected) one call may take before giving up.
     pub max_steps: u64,
 }
@@ -171,6 +176,7 @@ impl Radau5 {
             h_max,
             fixed_step: false,
             h_next: 0.0,
+            h_proposed: 0.0,
             // A radau5 step costs tens of right-hand sides and a factorisation: fewer of them
             // fit in the work one communication step may take (see
             // MAX_RHS_EVALUATIONS_PER_DO_STEP).
@@ -678,6 +684,7 @@ impl Radau5 {
             guess.min(h_max)
         };
         let mut first = self.h_next <= 0.0;
+        let mut proposed = self.h_proposed;
         let mut last_rejected = false;
         let mut steps = 0u64;
         let mut z = [0.0; N3];
@@ -871,20 +878,16 @@ impl Radau5 {
                 } else {
                     h_try * fac
                 };
-                // A step clamped to the end of the call is the call's last: what it proposes
-                // is kept for the next call (h_next) up to the longest step, not this call's
-                // span, so that a caller may step past a short call's end.
-                h = if clamped {
-                    h.max(proposal).min(self.h_max)
-                } else {
-                    proposal.min(h_max)
-                };
+                let unclamped = if clamped { h.max(proposal) } else { proposal };
+                h = unclamped.min(h_max);
+                proposed = unclamped.min(self.h_max);
                 // After a step cut short at a kink, go on with the step that was cut.
                 if let Some(before) = resume.take() {
                     h = h.max(before).min(h_max);
                 }
                 if let Some(cap) = cap {
                     h = h.min(cap);
+                    proposed = proposed.min(cap);
                 }
             }
             resume = None;
@@ -893,6 +896,7 @@ impl Radau5 {
         }
         if !self.fixed_step {
             self.h_next = h;
+            self.h_proposed = proposed;
         }
         Ok(())
     }
