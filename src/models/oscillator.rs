@@ -551,10 +551,12 @@ impl Oscillator {
         }
     }
 
-    /// Where steps may be taken ahead and the solver's next step reaches past `t_end` (and not
-    /// past the period's `boundary`): takes that step and reads the state at `t_end` from it
-    /// (true). False, with nothing changed but the work, where it may not or its last step
-    /// does not hold `t_end` (a rejection or a kink cut it).
+    /// Where steps may be taken ahead and the step radau5 proposes holds [`CALLS_AHEAD`] calls
+    /// ending at `t_end` (not reaching past the period's `boundary`, nor longer than the last
+    /// polynomial read within the tolerance suggests): takes that step and reads the state at
+    /// `t_end` from it (true). False, with nothing changed but the work and that suggestion,
+    /// where it may not, or its last step does not hold `t_end` (a rejection or a kink cut it),
+    /// or its polynomial is not within the tolerance.
     fn look_ahead(&mut self, t_end: f64, boundary: f64, at_start: &Work) -> Result<bool, String> {
         let Core::Regularized(_, Solver::Adaptive(Adaptive::Radau5(radau))) = &mut self.core else {
             return Ok(false);
