@@ -40,6 +40,24 @@ def simulate(model_identifier, start_values=None, stop_time=None, step=None, out
     )
 
 
+def assert_default_experiment_matches_fmpy(fmu, run, bound):
+    """Runs `run(step, stop)` (another importer's recording of `fmu`'s DefaultExperiment, a record
+    array with a time column) and fmpy on the same points; every Real output within `bound` of its
+    range."""
+    md = fmpy.read_model_description(str(fmu))
+    step, stop = float(md.defaultExperiment.stepSize), float(md.defaultExperiment.stopTime)
+    outputs = [v.name for v in md.modelVariables if v.causality == "output" and v.type == "Real"]
+    result = run(step, stop)
+    reference = fmpy.simulate_fmu(str(fmu), stop_time=stop, output_interval=step, output=outputs)
+    assert len(result) == len(reference) == round(stop / step) + 1
+    assert max(abs(result["time"] - reference["time"])) <= 1e-9 * stop
+    for output in outputs:
+        want = reference[output]
+        scale = want.max() - want.min() or abs(want).max() or 1.0
+        error = abs(result[output] - want).max() / scale
+        assert error <= bound, f"{fmu.stem}.{output}: {error:.2e} of its range"
+
+
 @pytest.fixture(scope="session")
 def root():
     return ROOT

@@ -14,11 +14,10 @@ import os
 import shutil
 import subprocess
 
-import fmpy
 import numpy as np
 import pytest
 
-from conftest import FMU_DIR
+from conftest import FMU_DIR, assert_default_experiment_matches_fmpy
 
 FMI_SIM = os.environ.get("FMI_SIM") or shutil.which("fmi-sim")
 pytestmark = pytest.mark.skipif(
@@ -40,24 +39,9 @@ def fmi_sim(fmu, tmp_path, *values):
     return np.genfromtxt(out, delimiter=",", names=True)
 
 
-def real_outputs(md):
-    return [v.name for v in md.modelVariables if v.causality == "output" and v.type == "Real"]
-
-
 @pytest.mark.parametrize("fmu", FMUS, ids=[f.stem for f in FMUS])
 def test_the_default_experiment_matches_fmpy(fmu, tmp_path):
-    md = fmpy.read_model_description(str(fmu))
-    step, stop = float(md.defaultExperiment.stepSize), float(md.defaultExperiment.stopTime)
-    outputs = real_outputs(md)
-    result = fmi_sim(fmu, tmp_path)
-    reference = fmpy.simulate_fmu(str(fmu), stop_time=stop, output_interval=step, output=outputs)
-    assert len(result) == len(reference) == round(stop / step) + 1
-    np.testing.assert_allclose(result["time"], reference["time"], rtol=0, atol=1e-9 * stop)
-    for output in outputs:
-        want = reference[output]
-        scale = np.ptp(want) or np.max(np.abs(want)) or 1.0
-        error = np.max(np.abs(result[output] - want)) / scale
-        assert error <= 1e-7, f"{fmu.stem}.{output}: {error:.2e} of its range"
+    assert_default_experiment_matches_fmpy(fmu, lambda step, stop: fmi_sim(fmu, tmp_path), 1e-7)
 
 
 def test_a_start_value_from_the_command_line(tmp_path):

@@ -19,7 +19,7 @@ import fmpy
 import numpy as np
 import pytest
 
-from conftest import FMU_DIR
+from conftest import FMU_DIR, assert_default_experiment_matches_fmpy
 
 FMUSIM = os.environ.get("FMUSIM") or shutil.which("fmusim")
 pytestmark = pytest.mark.skipif(
@@ -44,24 +44,10 @@ def fmusim(fmu, tmp_path, step, stop, *start_values):
     return result[result["time"] <= stop * (1 + 1e-12)]
 
 
-def real_outputs(md):
-    return [v.name for v in md.modelVariables if v.causality == "output" and v.type == "Real"]
-
-
 @pytest.mark.parametrize("fmu", FMUS, ids=[f.stem for f in FMUS])
 def test_the_default_experiment_matches_fmpy(fmu, tmp_path):
-    md = fmpy.read_model_description(str(fmu))
-    step, stop = float(md.defaultExperiment.stepSize), float(md.defaultExperiment.stopTime)
-    outputs = real_outputs(md)
-    result = fmusim(fmu, tmp_path, step, stop)
-    reference = fmpy.simulate_fmu(str(fmu), stop_time=stop, output_interval=step, output=outputs)
-    assert len(result) == len(reference) == round(stop / step) + 1
-    np.testing.assert_allclose(result["time"], reference["time"], rtol=0, atol=1e-12 * stop)
-    for output in outputs:
-        want = reference[output]
-        scale = np.ptp(want) or np.max(np.abs(want)) or 1.0
-        error = np.max(np.abs(result[output] - want)) / scale
-        assert error <= 1e-12, f"{fmu.stem}.{output}: {error:.2e} of its range"
+    assert_default_experiment_matches_fmpy(
+        fmu, lambda step, stop: fmusim(fmu, tmp_path, step, stop), 1e-12)
 
 
 def test_a_start_value_from_the_command_line(tmp_path):
