@@ -488,16 +488,8 @@ impl Oscillator {
                     let start = [self.state.u, self.state.v, self.state.dissipated];
                     let probe = tracks.then(|| solver.clone());
                     let mut y = start;
-                    match last.as_deref_mut() {
-                        Some(last) => solver.integrate_keeping(
-                            equations,
-                            (t0, t1),
-                            &mut y,
-                            &mut self.work,
-                            last,
-                        )?,
-                        None => solver.integrate(&*equations, t0, t1, &mut y, &mut self.work)?,
-                    }
+                    let keep = last.as_deref_mut();
+                    solver.integrate(equations, (t0, t1), &mut y, &mut self.work, keep)?;
                     if let Some(probe) = probe.filter(|_| start[1] * y[1] < 0.0) {
                         let extreme =
                             turning_point(equations, probe, (t0, start), (t1, y), &mut self.work)?;
@@ -687,7 +679,7 @@ fn turning_point(
         }
         let mut probe = solver_lo.clone();
         let mut y = y_lo;
-        probe.integrate(equations, lo, t, &mut y, work)?;
+        probe.integrate(equations, (lo, t), &mut y, work, None)?;
         best = y[0];
         let slope = (v_hi - v_lo) / (hi - lo);
         if y[1] * y[1] <= 0.2 * atol * slope.abs() || hi - lo <= 4.0 * f64::EPSILON * t.abs() {

@@ -61,37 +61,28 @@ impl Solver {
         }
     }
 
+    /// Advances `y` from `t0` to `t1`; with `last`, radau5 leaves its last accepted step there
+    /// (`h` = 0 for the other solvers, or if none was accepted).
     pub fn integrate(
-        &mut self,
-        equations: &Equations,
-        t0: f64,
-        t1: f64,
-        y: &mut [f64],
-        work: &mut Work,
-    ) -> Result<(), String> {
-        match self {
-            Solver::Adaptive(a) => a.integrate_switched(equations, t0, t1, y, work),
-            Solver::Rk4(r) => r.integrate(equations, t0, t1, y, work),
-        }
-    }
-
-    /// [`Solver::integrate`], leaving radau5's last accepted step in `last` (`h` = 0 for the
-    /// other solvers, or if none was accepted).
-    pub fn integrate_keeping(
         &mut self,
         equations: &Equations,
         (t0, t1): (f64, f64),
         y: &mut [f64],
         work: &mut Work,
-        last: &mut StepPolynomial,
+        last: Option<&mut StepPolynomial>,
     ) -> Result<(), String> {
-        match self {
-            Solver::Adaptive(Adaptive::Radau5(r)) => {
+        match (self, last) {
+            (Solver::Adaptive(Adaptive::Radau5(r)), Some(last)) => {
                 r.integrate_switched_keeping(equations, (t0, t1), y, work, last)
             }
-            _ => {
-                last.h = 0.0;
-                self.integrate(equations, t0, t1, y, work)
+            (solver, last) => {
+                if let Some(last) = last {
+                    last.h = 0.0;
+                }
+                match solver {
+                    Solver::Adaptive(a) => a.integrate_switched(equations, t0, t1, y, work),
+                    Solver::Rk4(r) => r.integrate(equations, t0, t1, y, work),
+                }
             }
         }
     }
