@@ -164,7 +164,7 @@ fn longitudinal_solvers_converge_at_kt_x1000() {
         Knob::Steps(240_000),
     ];
     converges(m, &stiff, run, "rk4", rk4);
-    for solver in ["dopri5", "radau5"] {
+    for solver in ["dopri5", "radau5", "closed_form"] {
         converges(m, &stiff, run, solver, [tol(1e-5), tol(1e-7), tol(1e-11)]);
     }
 }

@@ -17,6 +17,7 @@
 //! ([`Ramp`]). The normal force scales the law's force levels: FC = mu FN, and LuGre's FS with
 //! FN / (m g).
 
+mod closed_form;
 mod ode;
 #[cfg(feature = "tools")]
 pub mod stability;
@@ -35,6 +36,7 @@ use crate::solve::phase::{cos_turns, turns};
 use crate::solve::shooting;
 use crate::solve::{within_step_budget, Work};
 use crate::variables::values::ValueSet;
+use closed_form::Sliding;
 use ode::Solver;
 use std::f64::consts::TAU;
 
@@ -144,6 +146,17 @@ fn displacement(source: Velocity, clock: Clock, input: Ramp, t0: f64, t: f64) ->
             vc * (t - t0) + va / (TAU * clock.f) * (sin(t) - sin(t0))
         }
         Velocity::Input => input.integral(t0, t),
+    }
+}
+
+/// The distance slid from `t0` to `t0 + tau`, as a function of tau (the prescribed velocity's sine
+/// in turns, as the velocity's cosine).
+fn slid_from(source: Velocity, clock: Clock, input: Ramp, t0: f64) -> impl Fn(f64) -> f64 {
+    let sin = move |t: f64| cos_turns(clock.phase(t) - 0.25);
+    let sin0 = sin(t0);
+    move |tau: f64| match source {
+        Velocity::Prescribed { vc, va } => vc * tau + va / (TAU * clock.f) * (sin(t0 + tau) - sin0),
+        Velocity::Input => input.integral(t0, t0 + tau),
     }
 }
 
@@ -291,6 +304,11 @@ impl Longitudinal {
                     d.alpha
                 ));
             }
+        }
+        if let (Solver::ClosedForm(_), Some(_), false) = (&solver, load, law == Law::Coulomb) {
+            return Err(
+                "solver closed_form with the normal force an input: expected normal_force_source = weight (under a moving normal force the bristle has no closed form), or solver dopri5 or radau5".into(),
+            );
         }
         let tracks_mean = scope.exposes(vr::FT_MEAN) || scope.exposes(vr::S);
         Ok(Longitudinal {
@@ -585,6 +603,24 @@ impl Longitudinal {
                 mean.add(self.fc / self.weight * load.integral(t0, t1), end);
             }
         }
+        if let (Solver::ClosedForm(_), Law::Dahl(law)) = (&self.solver, self.law) {
+            let s = sgn(self.sliding_direction(self.velocity_at(0.5 * (t0 + t1))));
+            let slid = slid_from(self.velocity, self.clock(), self.v_in, t0);
+            let Solver::ClosedForm(solver) = &mut self.solver else {
+                unreachable!("matched above")
+            };
+            let done = solver.advance(
+                &law,
+                Sliding { s, slid },
+                (self.z, t1 - t0),
+                self.tracks_mean,
+                &mut self.work,
+            )?;
+            self.z = done.z;
+            self.friction_work += done.power_integral;
+            self.mean.add(done.force_integral, end);
+            return Ok(());
+        }
         if !matches!(self.solver, Solver::Exponential) && self.law != Law::Coulomb {
             let (integral, power_integral) = self.advance_ode(t0, t1)?;
             self.friction_work += power_integral;
@@ -662,7 +698,7 @@ impl Simulation for Longitudinal {
         }
         let integrates_work = self.ode_dim == 3
             || self.law == Law::Coulomb
-            || matches!(self.solver, Solver::Exponential);
+            || matches!(self.solver, Solver::Exponential | Solver::ClosedForm(_));
         match self.law {
             // LuGre's bristle damping sigma1 can return energy (the law is passive only for
             // small sigma1), so only the other laws are held to it.
@@ -710,8 +746,7 @@ impl Simulation for Longitudinal {
         Some((
             1.0 / self.f,
             self.solver
-                .adaptive()
-                .map(Adaptive::rtol)
+                .tolerance()
                 .unwrap_or(super::FIXED_STEP_ACCURACY),
         ))
     }
@@ -722,10 +757,7 @@ impl Simulation for Longitudinal {
         out.clear();
         out.extend_from_slice(&[self.t, self.z, self.v_in.value, self.v_in.rate]);
         out.extend_from_slice(&self.mean.save());
-        out.extend_from_slice(&[
-            self.solver.adaptive().map_or(0.0, Adaptive::step_hint),
-            self.friction_work,
-        ]);
+        out.extend_from_slice(&[self.solver.step_hint(), self.friction_work]);
         if let (Some(load), Some(mean)) = (self.load, &self.fc_mean) {
             out.extend_from_slice(&[load.value, load.rate]);
             out.extend_from_slice(&mean.save());
@@ -747,9 +779,7 @@ impl Simulation for Longitudinal {
             rate: state[3],
         };
         self.mean.restore(&state[4..7]);
-        if let Some(a) = self.solver.adaptive_mut() {
-            a.set_step_hint(state[7]);
-        }
+        self.solver.set_step_hint(state[7]);
         self.friction_work = state[8];
         if let (Some(load), Some(mean)) = (self.load.as_mut(), self.fc_mean.as_mut()) {
             *load = Ramp {
@@ -1213,6 +1243,7 @@ mod tests {
             ("dahl", "dopri5"),
             ("dahl", "radau5"),
             ("dahl", "exponential"),
+            ("dahl", "closed_form"),
             ("lugre", "dopri5"),
             ("coulomb", "dopri5"),
         ] {
@@ -1251,11 +1282,77 @@ mod tests {
             steady_mean_force(&v, 10).unwrap()
         };
         let reference = with("dopri5", 1e-12);
-        for solver in ["dopri5", "radau5"] {
+        for solver in ["dopri5", "radau5", "closed_form"] {
             for tol in [1e-8, 1e-10] {
                 let error = (with(solver, tol) / reference - 1.0).abs();
                 assert!(error < 10.0 * tol, "{solver} at {tol}: {error:.1e}");
             }
+        }
+    }
+
+    /// Oracle: dopri5 at rtol 1e-12. closed_form's bristle is exact, so its FT_mean meets the
+    /// tolerance asked, from fewer evaluations than dopri5 takes to the same tolerance; a saved
+    /// state replays to the same bits.
+    #[test]
+    fn closed_form_meets_the_tolerance_from_few_evaluations() {
+        let reference = steady_mean_force(&with_solver("dopri5", 1e-12), 12).unwrap();
+        let run = |solver: &str, tol: f64| {
+            let v = with_solver(solver, tol);
+            let mut sim = Longitudinal::new(&v, 0.0).unwrap();
+            for _ in 0..12 {
+                sim.do_step(1.0 / sim.f, &v).unwrap();
+            }
+            (sim.mean_force(), sim.work.rhs_evaluations)
+        };
+        for tol in [1e-4, 1e-6, 1e-10] {
+            let (mean, evaluations) = run("closed_form", tol);
+            let error = (mean / reference - 1.0).abs();
+            assert!(error < tol, "closed_form at {tol}: error {error:.1e}");
+            let (_, dopri5) = run("dopri5", tol);
+            assert!(
+                evaluations < dopri5,
+                "at {tol}: {evaluations} evaluations, dopri5 {dopri5}"
+            );
+        }
+        let v = with_solver("closed_form", 1e-8);
+        let h = 0.37 / 60_000.0;
+        let mut a = Longitudinal::new(&v, 0.0).unwrap();
+        a.do_step(h, &v).unwrap();
+        let saved = a.save();
+        a.do_step(h, &v).unwrap();
+        let mut b = Longitudinal::new(&v, 0.0).unwrap();
+        b.restore(&saved).unwrap();
+        b.do_step(h, &v).unwrap();
+        assert_eq!(a.mean_force().to_bits(), b.mean_force().to_bits());
+        assert_eq!(a.z().to_bits(), b.z().to_bits());
+    }
+
+    /// closed_form refuses what has no closed form, saying what it expected.
+    #[test]
+    fn closed_form_refuses_laws_without_a_closed_form() {
+        let mut lugre = with_solver("closed_form", 1e-8);
+        lugre.set(vr::LAW, f64::from(LAW.value_of("lugre").unwrap()));
+        let mut power = with_solver("closed_form", 1e-8);
+        power.set(vr::ALPHA, 0.5);
+        let mut loaded = with_solver("closed_form", 1e-8);
+        loaded.set(
+            vr::NORMAL_FORCE_SOURCE,
+            f64::from(table::NORMAL_FORCE_SOURCE.value_of("input").unwrap()),
+        );
+        for (case, v, expected) in [
+            ("lugre", lugre, "expected law dahl"),
+            ("alpha 0.5", power, "expected alpha = 1"),
+            (
+                "normal force input",
+                loaded,
+                "expected normal_force_source = weight",
+            ),
+        ] {
+            let refused = Longitudinal::new(&v, 0.0).err();
+            assert!(
+                refused.as_ref().is_some_and(|e| e.contains(expected)),
+                "{case}: {refused:?}"
+            );
         }
     }
 }

@@ -86,6 +86,7 @@ switch!(
         Rk4 = "rk4",
         Dopri5 = "dopri5",
         Radau5 = "radau5",
+        ClosedForm = "closed_form",
     }
 );
 switch!(

@@ -43,6 +43,7 @@ pub fn longitudinal() -> Case {
     settings.extend(steps("rk4", &[25, 50, 100, 200, 400, 800, 1600]));
     settings.extend(tolerances("dopri5", 3, 10));
     settings.extend(tolerances("radau5", 3, 10));
+    settings.extend(tolerances("closed_form", 3, 10));
     let run = |s: &Setting| -> Result<(f64, Work), String> {
         let mut v = ValueSet::start(&il::TABLE);
         v.set(il::vr::LAW, item(&il::LAW, "dahl")?);

@@ -10,6 +10,7 @@ pub mod dopri;
 pub mod expm;
 pub mod narrow;
 pub mod phase;
+pub mod quadrature;
 pub mod radau;
 pub mod rk4;
 pub mod root;

@@ -333,6 +333,13 @@ pub fn longitudinal() -> Case {
             absent: None,
         },
         Curve {
+            name: "ours closed_form".into(),
+            ours: true,
+            knobs: tolerances(1e-3),
+            run: longitudinal_ours("closed_form"),
+            absent: None,
+        },
+        Curve {
             name: "ours exponential".into(),
             ours: true,
             knobs: steps(&[25, 50, 100, 200, 400, 800, 1600, 3200, 6400, 12800]),

@@ -1,8 +1,9 @@
-//! The solver menu of scene L. `exponential` is the simulation's own scheme (in the parent module);
-//! the others integrate the bristle ODE `z' = rate(z, vr(t))` together with the force integral
+//! The solver menu of scene L. `exponential` is the simulation's own scheme (in the parent module),
+//! `closed_form` the exact bristle of Dahl at alpha = 1 ([`ClosedForm`]); the others integrate the bristle ODE `z' = rate(z, vr(t))` together with the force integral
 //! `q' = FT(z, vr(t))` and the friction work `w' = FT vr` as quadrature states (same order as
 //! the solver), over sub-steps that never contain a sign change of vr.
 
+use super::closed_form::ClosedForm;
 use super::Law;
 use crate::models::longitudinal::table::vr;
 use crate::models::switch::{LongitudinalSolver, Switch};
@@ -21,6 +22,7 @@ pub enum Solver {
         h_max: f64,
     },
     Adaptive(Adaptive),
+    ClosedForm(ClosedForm),
 }
 
 /// The law as a function of time, under a moving normal force.
@@ -78,7 +80,9 @@ impl Solver {
                     h_max: 1.0 / (f * f64::from(steps_per_period)),
                 })
             }
-            LongitudinalSolver::Dopri5 | LongitudinalSolver::Radau5 => {}
+            LongitudinalSolver::Dopri5
+            | LongitudinalSolver::Radau5
+            | LongitudinalSolver::ClosedForm => {}
         }
         let rtol = values.real(vr::TOLERANCE);
         if !(1e-14..=1e-2).contains(&rtol) {
@@ -100,6 +104,23 @@ impl Solver {
             Law::Coulomb => fc / f,
             _ => kt * z_scale / f,
         };
+        if name == LongitudinalSolver::ClosedForm {
+            return match law {
+                Law::Dahl(d) if d.alpha == 1.0 => Ok(Solver::ClosedForm(ClosedForm::new(
+                    rtol,
+                    fc,
+                    kt * z_scale,
+                ))),
+                Law::Coulomb => Ok(Solver::ClosedForm(ClosedForm::new(rtol, fc, fc))),
+                Law::Dahl(d) => Err(format!(
+                    "solver closed_form with law dahl at alpha = {}: expected alpha = 1 (the bristle is in closed form only there), or solver dopri5 or radau5",
+                    d.alpha
+                )),
+                Law::LuGre(_) => Err(
+                    "solver closed_form with law lugre: expected law dahl (alpha = 1) or coulomb, or solver dopri5 or radau5 for LuGre".into(),
+                ),
+            };
+        }
         // The work w is left out of the error control (an infinite atol): the steps the
         // deflection needs integrate it to the same order.
         Ok(if name == LongitudinalSolver::Radau5 {
@@ -123,14 +144,40 @@ impl Solver {
     pub fn adaptive(&self) -> Option<&Adaptive> {
         match self {
             Solver::Adaptive(a) => Some(a),
-            Solver::Exponential | Solver::Rk4 { .. } => None,
+            _ => None,
         }
     }
 
     pub fn adaptive_mut(&mut self) -> Option<&mut Adaptive> {
         match self {
             Solver::Adaptive(a) => Some(a),
+            _ => None,
+        }
+    }
+
+    /// The tolerance a solver integrates to (None for the fixed-step ones).
+    pub fn tolerance(&self) -> Option<f64> {
+        match self {
+            Solver::Adaptive(a) => Some(a.rtol()),
+            Solver::ClosedForm(c) => Some(c.rtol),
             Solver::Exponential | Solver::Rk4 { .. } => None,
+        }
+    }
+
+    /// The step (or quadrature panel) to try next, part of a saved FMU state.
+    pub fn step_hint(&self) -> f64 {
+        match self {
+            Solver::Adaptive(a) => a.step_hint(),
+            Solver::ClosedForm(c) => c.quadrature.h_next,
+            Solver::Exponential | Solver::Rk4 { .. } => 0.0,
+        }
+    }
+
+    pub fn set_step_hint(&mut self, h: f64) {
+        match self {
+            Solver::Adaptive(a) => a.set_step_hint(h),
+            Solver::ClosedForm(c) => c.quadrature.h_next = h,
+            Solver::Exponential | Solver::Rk4 { .. } => {}
         }
     }
 
@@ -153,7 +200,9 @@ impl Solver {
         };
         let mut y = [*z, 0.0, 0.0];
         match self {
-            Solver::Exponential => return Err("exponential is not an ODE solver".into()),
+            Solver::Exponential | Solver::ClosedForm(_) => {
+                return Err("exponential and closed_form are not ODE solvers".into())
+            }
             Solver::Rk4 { h_max } => Rk4 { h_max: *h_max }.integrate(&ode, t0, t1, &mut y, work)?,
             Solver::Adaptive(a) => a.integrate(&ode, t0, t1, &mut y, work)?,
         }

@@ -107,6 +107,10 @@ pub const SOLVER: EnumType = EnumType {
             "radau5",
             "Adaptive 3-stage Radau IIA (order 5, L-stable) to `tolerance`, restarted where vr changes sign and at period boundaries",
         ),
+        (
+            "closed_form",
+            "Dahl at alpha = 1 (and Coulomb) with the weight as the normal force: the bristle in closed form along vr itself, the force integral by adaptive Gauss-Kronrod quadrature to `tolerance`",
+        ),
     ],
 };
 
