@@ -10,13 +10,16 @@
 //!
 //! `u_amplitude` is max |u| over the last complete forcing period `2 pi/w`, counted from the
 //! start time. The exact core meets every extreme of u as an event; the regularised core finds
-//! an extreme inside a sub-step by re-integrating to where u' = 0 ([`turning_point`]).
+//! an extreme inside a sub-step by re-integrating to where u' = 0 ([`turning_point`]), or, with
+//! `piecewise` (the linear motion outside H's band in closed form, [`linear_phase`]), ends a
+//! dopri5 step there.
 //!
 //! With the force prescribed and radau5, a communication step of at most a quarter of the step
 //! the solver proposes takes that step past the communication point and reads the state there
 //! from the step's polynomial; the calls that follow inside the step read it too ([`Ahead`]).
 
 pub mod exact;
+mod linear_phase;
 mod solver;
 #[cfg(feature = "tools")]
 pub mod stability;
@@ -27,12 +30,14 @@ use super::switch::{
 };
 use super::{require_finite, require_non_negative, require_positive, Scope, Simulation};
 use crate::friction::regularized::{stiction_excess, Regularized};
+use crate::friction::sgn;
 use crate::models::oscillator::table::{vr, TABLE};
 use crate::solve::adaptive::Adaptive;
 use crate::solve::radau::StepPolynomial;
 use crate::solve::{shooting, within_step_budget, Ode, Work};
 use crate::variables::values::ValueSet;
 use exact::{Event, Mode, State, Switch};
+use linear_phase::LinearPhase;
 use solver::Solver;
 use std::f64::consts::TAU;
 
@@ -72,6 +77,9 @@ pub struct Equations {
     pub law: Regularized,
     /// W is integrated (W_diss is read).
     pub with_work: bool,
+    /// u' = 0 is a switching function too (`piecewise`, u_amplitude read): dopri5 ends a step
+    /// where u' changes sign, so each extreme of u is the end of a step.
+    pub ends_steps_at_rest: bool,
 }
 
 impl Equations {
@@ -376,13 +384,15 @@ impl Oscillator {
                 Core::Exact(Box::new(Switch::new(plant, (h, hs), steps)?))
             }
             Some(law) => {
+                let name = OscillatorSolver::read(values, vr::SOLVER)?;
                 let equations = Equations {
                     plant,
                     held,
                     law,
                     with_work: scope.exposes(vr::W_DISS),
+                    ends_steps_at_rest: name == OscillatorSolver::Piecewise
+                        && scope.exposes(vr::U_AMPLITUDE),
                 };
-                let name = OscillatorSolver::read(values, vr::SOLVER)?;
                 Core::Regularized(equations, Solver::new(name, rtol, atol, period / steps))
             }
         };
@@ -485,11 +495,31 @@ impl Oscillator {
                     if let Solver::Rk4(_) = solver {
                         equations.require_rk4_stable(t1 - t0)?;
                     }
+                    let piecewise = matches!(solver, Solver::Piecewise(_));
+                    if piecewise && linear_phase(equations, &mut self.state, t_end, &mut self.work)
+                    {
+                        largest = largest.max(self.state.u.abs());
+                        continue;
+                    }
                     let start = [self.state.u, self.state.v, self.state.dissipated];
-                    let probe = tracks.then(|| solver.clone());
+                    // piecewise ends its steps where u' changes sign: no search.
+                    let probe = (tracks && !piecewise).then(|| solver.clone());
                     let mut y = start;
-                    let keep = last.as_deref_mut();
-                    solver.integrate(equations, (t0, t1), &mut y, &mut self.work, keep)?;
+                    let t1 = match solver {
+                        // Inside the band, up to where u' leaves it.
+                        Solver::Piecewise(Adaptive::Dopri5(dopri5)) => dopri5.integrate_to_kink(
+                            &*equations,
+                            (t0, t1),
+                            &mut y,
+                            &mut self.work,
+                            &mut largest,
+                        )?,
+                        _ => {
+                            let keep = last.as_deref_mut();
+                            solver.integrate(equations, (t0, t1), &mut y, &mut self.work, keep)?;
+                            t1
+                        }
+                    };
                     if let Some(probe) = probe.filter(|_| start[1] * y[1] < 0.0) {
                         let extreme =
                             turning_point(equations, probe, (t0, start), (t1, y), &mut self.work)?;
@@ -649,6 +679,45 @@ impl Oscillator {
             ))
         }
     }
+}
+
+/// Where the state is outside H's band (or within a millionth of its edge, leaving it: there
+/// H differs from h sgn(u') by a millionth at most, for a time that vanishes with it), takes the
+/// linear motion in closed form ([`LinearPhase`]) to where u' comes back to the edge, or to
+/// `t_end` (true). False, with nothing changed, inside the band or where the closed form does
+/// not apply.
+fn linear_phase(equations: &Equations, state: &mut State, t_end: f64, work: &mut Work) -> bool {
+    let (edge, h) = equations.band();
+    let s = sgn(state.v);
+    let beyond = s * state.v - edge;
+    let phase = LinearPhase::new(
+        &equations.plant,
+        (equations.held, s * h),
+        (state.t, state.u, state.v),
+    );
+    let Some(phase) = phase.filter(|p| {
+        s != 0.0
+            && (beyond > 0.0
+                || (beyond > -1e-6 * edge && s * p.acceleration(state.t, state.u, state.v) > 0.0))
+    }) else {
+        return false;
+    };
+    let mut evaluations = 0;
+    let entry = phase.entry(s, edge, t_end, &mut evaluations);
+    work.rhs_evaluations += evaluations;
+    let t1 = entry.unwrap_or(t_end);
+    if t1 <= state.t {
+        return false;
+    }
+    work.steps += 1;
+    let (u, v) = phase.at(t1);
+    // On the edge, where the band's switching functions start from 0.
+    let v = if entry.is_some() { s * edge } else { v };
+    if equations.with_work {
+        state.dissipated += h * s * (u - state.u);
+    }
+    (state.t, state.u, state.v) = (t1, u, v);
+    true
 }
 
 /// u where u' changes sign inside the sub-step from `a` to `b`: u' is located by re-integrating

@@ -136,7 +136,12 @@ switch!(
 );
 switch!(
     /// Scene O's integration scheme.
-    OscillatorSolver = oscillator::SOLVER { Radau5 = "radau5", Dopri5 = "dopri5", Rk4 = "rk4" }
+    OscillatorSolver = oscillator::SOLVER {
+        Radau5 = "radau5",
+        Dopri5 = "dopri5",
+        Rk4 = "rk4",
+        Piecewise = "piecewise",
+    }
 );
 switch!(
     /// Scene O's initial state.

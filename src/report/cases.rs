@@ -133,6 +133,7 @@ pub fn oscillator() -> Case {
     const PERIODS: u32 = 60;
     let mut settings = tolerances("radau5", 3, 10);
     settings.extend(tolerances("dopri5", 3, 10));
+    settings.extend(tolerances("piecewise", 3, 10));
     // Fewer than 50 steps a period would be cut to the communication step of 1/50 period.
     settings.extend(steps("rk4", &[64, 128, 256, 512, 1024, 2048, 4096]));
     let run = |s: &Setting| -> Result<(f64, Work), String> {

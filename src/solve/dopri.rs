@@ -46,6 +46,12 @@ pub trait Switching: Ode {
         false
     }
 
+    /// Whether [`Dopri5::integrate_to_kink`] stops where switch `i` changes sign; where it does
+    /// not, a step merely ends there, as every step does on a kink.
+    fn stops_at(&self, _i: usize) -> bool {
+        true
+    }
+
     /// The coordinate of a narrow feature of the right-hand side ([`crate::solve::narrow`]),
     /// from the switching functions' values at a point: steps that pass through its band are
     /// held short enough for the stages to sample it. None: no such feature.
@@ -657,6 +663,34 @@ impl Dopri5 {
         y: &mut [f64],
         work: &mut Work,
     ) -> Result<(), String> {
+        self.run(ode, (t0, t1), y, work, None).map(|_| ())
+    }
+
+    /// Like [`Dopri5::integrate_switched`], but stops at the end of the first step that ends on
+    /// a sign change of a switching function it stops at ([`Switching::stops_at`]); returns where
+    /// it stopped (`t1` if none came). `largest` takes the largest |y[0]| at the steps' ends: the
+    /// extremes of y[0] where a switch ends the steps on them.
+    pub fn integrate_to_kink<S: Switching + ?Sized>(
+        &mut self,
+        ode: &S,
+        (t0, t1): (f64, f64),
+        y: &mut [f64],
+        work: &mut Work,
+        largest: &mut f64,
+    ) -> Result<f64, String> {
+        self.run(ode, (t0, t1), y, work, Some(largest))
+    }
+
+    /// The integration; with `stop` (the largest |y[0]| met so far), up to the first kink it
+    /// stops at.
+    fn run<S: Switching + ?Sized>(
+        &mut self,
+        ode: &S,
+        (t0, t1): (f64, f64),
+        y: &mut [f64],
+        work: &mut Work,
+        mut stop: Option<&mut f64>,
+    ) -> Result<f64, String> {
         let n = ode.dim();
         if n > MAX_DIM || y.len() < n {
             return Err(format!("dopri5: {n} states do not fit (at most {MAX_DIM})"));
@@ -670,7 +704,7 @@ impl Dopri5 {
             ));
         }
         if t1 == t0 {
-            return Ok(());
+            return Ok(t1);
         }
         let span = t1 - t0;
         // Steps shorter than this are round-off in t.
@@ -842,6 +876,8 @@ impl Dopri5 {
                 0.0
             };
             (count, sigma) = (count_end, sigma_end);
+            // The kink the step ended on (crossed, or a sliver short of it).
+            let mut on_kink = first;
             if let Some(i) = first {
                 // The step ended on the kink of switch i, which the next step must not find
                 // again: where the end landed a hair short of it, take it as crossed.
@@ -857,6 +893,7 @@ impl Dopri5 {
                     && sw_old[i].abs() < PREDICTED_SLACK * h_taken * slope.abs()
                 {
                     sw_old[i] = f64::MIN_POSITIVE.copysign(slope);
+                    on_kink = Some(i);
                 }
             } else {
                 let (fac, ln_err) = Self::growth(tr.err, ln_err_old);
@@ -871,8 +908,14 @@ impl Dopri5 {
             if let Some(cap) = cap {
                 self.h = self.h.min(cap);
             }
+            if let Some(largest) = stop.as_deref_mut() {
+                *largest = largest.max(y[0].abs());
+                if on_kink.is_some_and(|i| ode.stops_at(i)) {
+                    return Ok(t);
+                }
+            }
         }
-        Ok(())
+        Ok(t1)
     }
 
     /// The step times the Jacobian's size along the difference of the last two stages, which

@@ -429,6 +429,7 @@ pub fn oscillator_trigonometric() -> Case {
                 held: 0.0,
                 law: Regularized::Trigonometric { h, d },
                 with_work: false,
+                ends_steps_at_rest: false,
             },
         },
         y0: vec![0.0, 0.0],
@@ -450,6 +451,13 @@ pub fn oscillator_trigonometric() -> Case {
             ours: true,
             knobs: tolerances(1e-3),
             run: oscillator_ours("trigonometric", "dopri5"),
+            absent: None,
+        },
+        Curve {
+            name: "ours piecewise".into(),
+            ours: true,
+            knobs: tolerances(1e-3),
+            run: oscillator_ours("trigonometric", "piecewise"),
             absent: None,
         },
     ];

@@ -1,6 +1,7 @@
 //! The solver menu of scene O's regularised core: Radau IIA (L-stable, the default),
 //! Dormand-Prince 5(4) ending its steps on the kinks of H at |u'| = D (and D + Da, D + 2 Da with
-//! stiction), and fixed-step RK4.
+//! stiction), fixed-step RK4, and `piecewise`: the linear motion outside H's band in closed form
+//! ([`super::linear_phase`]), dopri5 inside it.
 
 use super::Equations;
 use crate::friction::regularized::Regularized;
@@ -15,6 +16,8 @@ use crate::solve::{Integrator, Work, MAX_DIM};
 pub enum Solver {
     Adaptive(Adaptive),
     Rk4(Rk4),
+    /// dopri5 inside the band, which the closed form outside it leaves to.
+    Piecewise(Adaptive),
 }
 
 impl Solver {
@@ -23,10 +26,15 @@ impl Solver {
     /// steps the motion needs integrate it to the same order.
     pub fn new(name: OscillatorSolver, rtol: f64, atol: f64, h_max: f64) -> Self {
         match name {
-            OscillatorSolver::Dopri5 => {
+            OscillatorSolver::Dopri5 | OscillatorSolver::Piecewise => {
                 let mut atols = [atol; MAX_DIM];
                 atols[2] = f64::INFINITY;
-                Solver::Adaptive(Adaptive::Dopri5(Dopri5::new(rtol, atols, h_max)))
+                let dopri5 = Adaptive::Dopri5(Dopri5::new(rtol, atols, h_max));
+                if name == OscillatorSolver::Piecewise {
+                    Solver::Piecewise(dopri5)
+                } else {
+                    Solver::Adaptive(dopri5)
+                }
             }
             OscillatorSolver::Rk4 => Solver::Rk4(Rk4 { h_max }),
             OscillatorSolver::Radau5 => {
@@ -40,7 +48,10 @@ impl Solver {
     pub fn atol(&self) -> f64 {
         match self {
             Solver::Adaptive(Adaptive::Radau5(r)) => r.atol,
-            Solver::Adaptive(Adaptive::Dopri5(d)) => d.atol[0],
+            Solver::Adaptive(Adaptive::Dopri5(d)) | Solver::Piecewise(Adaptive::Dopri5(d)) => {
+                d.atol[0]
+            }
+            Solver::Piecewise(Adaptive::Radau5(r)) => r.atol,
             // The turning-point search stops at this resolution of u'.
             Solver::Rk4(_) => 1e-12,
         }
@@ -49,14 +60,14 @@ impl Solver {
     /// The adaptive solver, if it is one.
     pub fn adaptive(&self) -> Option<&Adaptive> {
         match self {
-            Solver::Adaptive(a) => Some(a),
+            Solver::Adaptive(a) | Solver::Piecewise(a) => Some(a),
             Solver::Rk4(_) => None,
         }
     }
 
     pub fn adaptive_mut(&mut self) -> Option<&mut Adaptive> {
         match self {
-            Solver::Adaptive(a) => Some(a),
+            Solver::Adaptive(a) | Solver::Piecewise(a) => Some(a),
             Solver::Rk4(_) => None,
         }
     }
@@ -80,7 +91,9 @@ impl Solver {
                     last.h = 0.0;
                 }
                 match solver {
-                    Solver::Adaptive(a) => a.integrate_switched(equations, t0, t1, y, work),
+                    Solver::Adaptive(a) | Solver::Piecewise(a) => {
+                        a.integrate_switched(equations, t0, t1, y, work)
+                    }
                     Solver::Rk4(r) => r.integrate(equations, t0, t1, y, work),
                 }
             }
@@ -88,8 +101,20 @@ impl Solver {
     }
 }
 
+impl Equations {
+    /// The outer edge of H's band and h: beyond the edge H is the constant h sgn(u').
+    pub fn band(&self) -> (f64, f64) {
+        match self.law {
+            Regularized::Linear { h, d } | Regularized::Trigonometric { h, d } => (d, h),
+            Regularized::LinearStiction { h, d, da }
+            | Regularized::TrigonometricStiction { h, d, da } => (d + 2.0 * da, h),
+        }
+    }
+}
+
 impl Switching for Equations {
-    /// H has kinks in u' at +-D (+-(D + Da), +-(D + 2 Da) with stiction).
+    /// H has kinks in u' at +-D (+-(D + Da), +-(D + 2 Da) with stiction); and u' = 0 where
+    /// steps end there ([`Equations::ends_steps_at_rest`]).
     fn switches(&self, _t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
         let v = y[1];
         let edges = match self.law {
@@ -98,10 +123,18 @@ impl Switching for Equations {
             | Regularized::TrigonometricStiction { d, da, .. } => [d, d + da, d + 2.0 * da],
         };
         let count = if edges[0] == edges[2] { 1 } else { 3 };
+        // u' itself first, where it ends steps.
+        let first = usize::from(self.ends_steps_at_rest);
+        out[0] = v;
         for (i, e) in edges[..count].iter().enumerate() {
-            out[2 * i] = v - e;
-            out[2 * i + 1] = v + e;
+            out[first + 2 * i] = v - e;
+            out[first + 2 * i + 1] = v + e;
         }
-        2 * count
+        first + 2 * count
+    }
+
+    /// piecewise stops at the band's kinks, not where u' changes sign.
+    fn stops_at(&self, i: usize) -> bool {
+        !(self.ends_steps_at_rest && i == 0)
     }
 }

@@ -87,6 +87,10 @@ pub const SOLVER: EnumType = EnumType {
             "rk4",
             "Classical Runge-Kutta, steps_per_period fixed steps per forcing period",
         ),
+        (
+            "piecewise",
+            "Outside the band of H (|u'| beyond D, or D + 2 Da with stiction) the motion is linear and taken in closed form to where |u'| comes back to the band; inside it dopri5",
+        ),
     ],
 };
 
