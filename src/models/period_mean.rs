@@ -32,6 +32,12 @@ impl PeriodMean {
         }
     }
 
+    /// Whether a period has completed (the value is then the last one's mean, not the running
+    /// mean).
+    pub fn has_completed(&self) -> bool {
+        self.completed > 0
+    }
+
     /// The end of the period now being integrated.
     pub fn next_boundary(&self) -> f64 {
         self.start_time + (self.completed + 1) as f64 * self.period
