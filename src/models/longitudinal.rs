@@ -154,13 +154,7 @@ fn velocity_at(source: Velocity, clock: Clock, input: Ramp, t: f64) -> f64 {
 
 /// The sliding displacement, the integral of vr from `t0` to `t`.
 fn displacement(source: Velocity, clock: Clock, input: Ramp, t0: f64, t: f64) -> f64 {
-    match source {
-        Velocity::Prescribed { vc, va } => {
-            let sin = |t: f64| (TAU * clock.phase(t).fract()).sin();
-            vc * (t - t0) + va / (TAU * clock.f) * (sin(t) - sin(t0))
-        }
-        Velocity::Input => input.integral(t0, t),
-    }
+    slid_from(source, clock, input, t0)(t - t0)
 }
 
 /// The distance slid from `t0` to `t0 + tau`, as a function of tau (the prescribed velocity's sine

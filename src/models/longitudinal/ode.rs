@@ -1,7 +1,8 @@
 //! The solver menu of scene L. `exponential` is the simulation's own scheme (in the parent module),
-//! `closed_form` the exact bristle of Dahl at alpha = 1 ([`ClosedForm`]); the others integrate the bristle ODE `z' = rate(z, vr(t))` together with the force integral
-//! `q' = FT(z, vr(t))` and the friction work `w' = FT vr` as quadrature states (same order as
-//! the solver), over sub-steps that never contain a sign change of vr.
+//! `closed_form` the exact bristle of Dahl at alpha = 1 ([`ClosedForm`]); the others integrate
+//! the bristle ODE `z' = rate(z, vr(t))` together with the force integral `q' = FT(z, vr(t))`
+//! and the friction work `w' = FT vr` as quadrature states (same order as the solver), over
+//! sub-steps that never contain a sign change of vr.
 
 use super::closed_form::ClosedForm;
 use super::Law;

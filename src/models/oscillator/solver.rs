@@ -125,7 +125,9 @@ impl Switching for Equations {
         let count = if edges[0] == edges[2] { 1 } else { 3 };
         // u' itself first, where it ends steps.
         let first = usize::from(self.ends_steps_at_rest);
-        out[0] = v;
+        if self.ends_steps_at_rest {
+            out[0] = v;
+        }
         for (i, e) in edges[..count].iter().enumerate() {
             out[first + 2 * i] = v - e;
             out[first + 2 * i + 1] = v + e;
