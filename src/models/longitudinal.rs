@@ -110,6 +110,10 @@ pub struct Longitudinal {
     pub ode_dim: usize,
     /// FT_mean or S is read: sub-steps end on period boundaries.
     pub tracks_mean: bool,
+    /// Where the prescribed vr turns to 0 within a period, the phase p in turns at which
+    /// cos(2 pi p) = -vc/va (and 1 - p); None where vr keeps its sign. Fixed with vc and va, so
+    /// taken once rather than on every call.
+    reversal_phase: Option<f64>,
     /// Why the periodic start fell back to the transient, for the first
     /// [`Simulation::take_warning`].
     notice: Option<String>,
@@ -300,7 +304,14 @@ impl Longitudinal {
             Velocity::Prescribed { vc, va } => (vc.abs() + va) / f,
             Velocity::Input => f64::INFINITY,
         };
-        let solver = Solver::new(values, law, fc, (f, steps_per_period), slip_per_period)?;
+        let solver = Solver::new(
+            values,
+            law,
+            fc,
+            (f, steps_per_period),
+            slip_per_period,
+            load.is_some(),
+        )?;
         let fixed_step = solver.fixed_step();
         if let (Law::Dahl(d), Some(_)) = (law, load) {
             if d.alpha < 1.0 && !fixed_step {
@@ -351,6 +362,10 @@ impl Longitudinal {
                 1
             },
             tracks_mean,
+            reversal_phase: match velocity {
+                Velocity::Prescribed { vc, va } if vc.abs() < va => Some((-vc / va).acos() / TAU),
+                _ => None,
+            },
             notice: None,
             pending: None,
         })
@@ -486,16 +501,13 @@ impl Longitudinal {
                 next = next.min(tc);
             }
         }
-        if let Velocity::Prescribed { vc, va } = self.velocity {
-            if vc.abs() < va {
-                // vr = 0 where cos(2 pi phase) = -vc/va: at phase fractions p and 1 - p.
-                let p = (-vc / va).acos() / TAU;
-                let k = phase.floor();
-                for crossing in [k + p, k + 1.0 - p, k + 1.0 + p, k + 2.0 - p] {
-                    let tc = at(crossing);
-                    if tc > t {
-                        next = next.min(tc);
-                    }
+        if let Some(p) = self.reversal_phase {
+            // vr = 0 at phase fractions p and 1 - p.
+            let k = phase.floor();
+            for crossing in [k + p, k + 1.0 - p, k + 1.0 + p, k + 2.0 - p] {
+                let tc = at(crossing);
+                if tc > t {
+                    next = next.min(tc);
                 }
             }
         }

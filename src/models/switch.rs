@@ -87,6 +87,7 @@ switch!(
         Dopri5 = "dopri5",
         Radau5 = "radau5",
         ClosedForm = "closed_form",
+        Auto = "auto",
     }
 );
 switch!(

@@ -72,8 +72,16 @@ impl Solver {
         fc: f64,
         (f, steps_per_period): (f64, u32),
         slip_per_period: f64,
+        load_input: bool,
     ) -> Result<Self, String> {
-        let name = LongitudinalSolver::read(values, vr::SOLVER)?;
+        let name = match LongitudinalSolver::read(values, vr::SOLVER)? {
+            LongitudinalSolver::Auto => match law {
+                Law::Coulomb => LongitudinalSolver::ClosedForm,
+                Law::Dahl(d) if d.alpha == 1.0 && !load_input => LongitudinalSolver::ClosedForm,
+                _ => LongitudinalSolver::Dopri5,
+            },
+            name => name,
+        };
         match name {
             LongitudinalSolver::Exponential => return Ok(Solver::Exponential),
             LongitudinalSolver::Rk4 => {
@@ -81,9 +89,8 @@ impl Solver {
                     h_max: 1.0 / (f * f64::from(steps_per_period)),
                 })
             }
-            LongitudinalSolver::Dopri5
-            | LongitudinalSolver::Radau5
-            | LongitudinalSolver::ClosedForm => {}
+            // The adaptive solvers and closed_form (auto is resolved above).
+            _ => {}
         }
         let rtol = values.real(vr::TOLERANCE);
         if !(1e-14..=1e-2).contains(&rtol) {

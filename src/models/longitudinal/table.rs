@@ -111,6 +111,10 @@ pub const SOLVER: EnumType = EnumType {
             "closed_form",
             "Dahl at alpha = 1 (and Coulomb) with the weight as the normal force: the bristle in closed form along vr itself, the force integral by adaptive Gauss-Kronrod quadrature to `tolerance`",
         ),
+        (
+            "auto",
+            "closed_form where the law has one (Coulomb, or Dahl at alpha = 1 with the weight as the normal force), dopri5 otherwise",
+        ),
     ],
 };
 
@@ -137,9 +141,10 @@ const VARIABLES: &[Variable] = &[
         INITIAL.name,
         1,
     ),
-    // dopri5 (item 3): the fastest to reach a relative error of 1e-6 in the work-precision
+    // auto (item 6): closed_form, exact and the cheapest per call, where the law has a closed
+    // form; else dopri5, the fastest to reach a relative error of 1e-6 in the work-precision
     // report (`friction-fmu report`, report/longitudinal.md).
-    enum_parameter("solver", vr::SOLVER, "Integration scheme", SOLVER.name, 3),
+    enum_parameter("solver", vr::SOLVER, "Integration scheme", SOLVER.name, 6),
     integer_parameter(
         "steps_per_period",
         vr::STEPS_PER_PERIOD,
