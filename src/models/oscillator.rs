@@ -11,8 +11,8 @@
 //! `u_amplitude` is max |u| over the last complete forcing period `2 pi/w`, counted from the
 //! start time. The exact core meets every extreme of u as an event; the regularised core finds
 //! an extreme inside a sub-step by re-integrating to where u' = 0 ([`turning_point`]), or, with
-//! `piecewise` (the linear motion outside H's band in closed form, [`linear_phase`]), ends a
-//! dopri5 step there.
+//! `piecewise` (the linear motion outside H's band in closed form, [`linear_phase`]), reads it
+//! off the dense output of dopri5's step (smooth inside the band, whose edges end steps).
 //!
 //! With the force prescribed and radau5, a communication step of at most a quarter of the step
 //! the solver proposes takes that step past the communication point and reads the state there
@@ -33,6 +33,7 @@ use crate::friction::regularized::{stiction_excess, Regularized};
 use crate::friction::sgn;
 use crate::models::oscillator::table::{vr, TABLE};
 use crate::solve::adaptive::Adaptive;
+use crate::solve::dopri::Dopri5;
 use crate::solve::radau::StepPolynomial;
 use crate::solve::{shooting, within_step_budget, Ode, Work};
 use crate::variables::values::ValueSet;
@@ -77,9 +78,6 @@ pub struct Equations {
     pub law: Regularized,
     /// W is integrated (W_diss is read).
     pub with_work: bool,
-    /// u' = 0 is a switching function too (`piecewise`, u_amplitude read): dopri5 ends a step
-    /// where u' changes sign, so each extreme of u is the end of a step.
-    pub ends_steps_at_rest: bool,
 }
 
 impl Equations {
@@ -390,8 +388,6 @@ impl Oscillator {
                     held,
                     law,
                     with_work: scope.exposes(vr::W_DISS),
-                    ends_steps_at_rest: name == OscillatorSolver::Piecewise
-                        && scope.exposes(vr::U_AMPLITUDE),
                 };
                 Core::Regularized(equations, Solver::new(name, rtol, atol, period / steps))
             }
@@ -496,13 +492,16 @@ impl Oscillator {
                         equations.require_rk4_stable(t1 - t0)?;
                     }
                     let piecewise = matches!(solver, Solver::Piecewise(_));
+                    if let Solver::Piecewise(Adaptive::Dopri5(dopri5)) = solver {
+                        close_to_edge(equations, dopri5, &mut self.state, t_end, &mut self.work);
+                    }
                     if piecewise && linear_phase(equations, &mut self.state, t_end, &mut self.work)
                     {
                         largest = largest.max(self.state.u.abs());
                         continue;
                     }
                     let start = [self.state.u, self.state.v, self.state.dissipated];
-                    // piecewise ends its steps where u' changes sign: no search.
+                    // piecewise reads extremes off dopri5's dense output: no search.
                     let probe = (tracks && !piecewise).then(|| solver.clone());
                     let mut y = start;
                     let t1 = match solver {
@@ -679,6 +678,56 @@ impl Oscillator {
             ))
         }
     }
+}
+
+/// Where dopri5 stopped short of the band's edge, u' leaving the band (its steps end on a kink
+/// to within a thousandth of a step, and a step retaken to a kink located on a trial's dense
+/// output can land a little shorter), closes the gap with one Heun step to where u' reaches
+/// the edge (true), if Euler's error over it, which bounds Heun's, is within the tolerance.
+/// False otherwise: then dopri5 goes on, a step of the gap's length and a restart dearer.
+fn close_to_edge(
+    equations: &Equations,
+    dopri5: &Dopri5,
+    state: &mut State,
+    t_end: f64,
+    work: &mut Work,
+) -> bool {
+    let (edge, _) = equations.band();
+    let s = sgn(state.v);
+    let gap = edge - s * state.v;
+    if !(gap > 0.0 && gap < 0.05 * edge) {
+        return false;
+    }
+    let n = equations.dim();
+    let y = [state.u, state.v, state.dissipated];
+    let mut k1 = [0.0; 3];
+    equations.rhs(state.t, &y[..n], &mut k1[..n]);
+    work.rhs_evaluations += 1;
+    let rate = s * k1[1];
+    let dt = gap / rate;
+    if !(rate > 0.0 && state.t + dt < t_end) {
+        return false;
+    }
+    let mut euler = y;
+    for j in 0..n {
+        euler[j] = y[j] + dt * k1[j];
+    }
+    let mut k2 = [0.0; 3];
+    equations.rhs(state.t + dt, &euler[..n], &mut k2[..n]);
+    work.rhs_evaluations += 1;
+    let within = (0..2)
+        .all(|j| 0.5 * dt * (k2[j] - k1[j]).abs() <= dopri5.atol[j] + dopri5.rtol * y[j].abs());
+    if !within {
+        return false;
+    }
+    work.steps += 1;
+    state.t += dt;
+    state.u += 0.5 * dt * (k1[0] + k2[0]);
+    state.v += 0.5 * dt * (k1[1] + k2[1]);
+    if n > 2 {
+        state.dissipated += 0.5 * dt * (k1[2] + k2[2]);
+    }
+    true
 }
 
 /// Where the state is outside H's band (or within a millionth of its edge, leaving it: there

@@ -46,12 +46,6 @@ pub trait Switching: Ode {
         false
     }
 
-    /// Whether [`Dopri5::integrate_to_kink`] stops where switch `i` changes sign; where it does
-    /// not, a step merely ends there, as every step does on a kink.
-    fn stops_at(&self, _i: usize) -> bool {
-        true
-    }
-
     /// The coordinate of a narrow feature of the right-hand side ([`crate::solve::narrow`]),
     /// from the switching functions' values at a point: steps that pass through its band are
     /// held short enough for the stages to sample it. None: no such feature.
@@ -315,6 +309,38 @@ impl Dense {
                 out[j] = self.shift[m] + out[j] * back;
             }
         }
+    }
+}
+
+impl Dense {
+    /// The extreme of y[0] inside the step, its maximum (`maximum`) or minimum: golden-section
+    /// search on the interpolant, to a fraction of the step far below where its value moves.
+    fn extreme_of_first(&self, maximum: bool) -> f64 {
+        let sign = if maximum { 1.0 } else { -1.0 };
+        let value = |theta: f64| {
+            let mut state = [0.0; MAX_DIM];
+            self.at(theta, &mut state);
+            sign * state[0]
+        };
+        let ratio = 0.5 * (5f64.sqrt() - 1.0);
+        let (mut a, mut b) = (0.0, 1.0);
+        let mut c = b - ratio * (b - a);
+        let mut d = a + ratio * (b - a);
+        let (mut fc, mut fd) = (value(c), value(d));
+        for _ in 0..40 {
+            if fc > fd {
+                b = d;
+                (d, fd) = (c, fc);
+                c = b - ratio * (b - a);
+                fc = value(c);
+            } else {
+                a = c;
+                (c, fc) = (d, fd);
+                d = a + ratio * (b - a);
+                fd = value(d);
+            }
+        }
+        sign * fc.max(fd)
     }
 }
 
@@ -667,9 +693,9 @@ impl Dopri5 {
     }
 
     /// Like [`Dopri5::integrate_switched`], but stops at the end of the first step that ends on
-    /// a sign change of a switching function it stops at ([`Switching::stops_at`]); returns where
-    /// it stopped (`t1` if none came). `largest` takes the largest |y[0]| at the steps' ends: the
-    /// extremes of y[0] where a switch ends the steps on them.
+    /// a sign change of a switching function; returns where it stopped (`t1` if none came).
+    /// `largest` takes the largest |y[0]| met: at the steps' ends, and inside a step where y[0]'s
+    /// derivative changes sign, from the step's dense output (smooth there: steps end on kinks).
     pub fn integrate_to_kink<S: Switching + ?Sized>(
         &mut self,
         ode: &S,
@@ -768,6 +794,7 @@ impl Dopri5 {
                 a
             };
             let sw_start = sw_old;
+            let rate_at_start = k1[0];
             let sigma_mid = (sigma + 0.5 * h * sigma_slope).max(0.0);
             self.trial(ode, t, y, &k1, h, (sigma, sigma_mid), &mut tr, work);
             // Look for a sign change before the error test: a step across a kink fails that test
@@ -910,7 +937,11 @@ impl Dopri5 {
             }
             if let Some(largest) = stop.as_deref_mut() {
                 *largest = largest.max(y[0].abs());
-                if on_kink.is_some_and(|i| ode.stops_at(i)) {
+                if rate_at_start * k1[0] < 0.0 {
+                    let dense = Dense::new(n, &y_start[..n], &tr, h_taken);
+                    *largest = largest.max(dense.extreme_of_first(rate_at_start > 0.0).abs());
+                }
+                if on_kink.is_some() {
                     return Ok(t);
                 }
             }

@@ -429,7 +429,6 @@ pub fn oscillator_trigonometric() -> Case {
                 held: 0.0,
                 law: Regularized::Trigonometric { h, d },
                 with_work: false,
-                ends_steps_at_rest: false,
             },
         },
         y0: vec![0.0, 0.0],

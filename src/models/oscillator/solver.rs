@@ -113,8 +113,7 @@ impl Equations {
 }
 
 impl Switching for Equations {
-    /// H has kinks in u' at +-D (+-(D + Da), +-(D + 2 Da) with stiction); and u' = 0 where
-    /// steps end there ([`Equations::ends_steps_at_rest`]).
+    /// H has kinks in u' at +-D (+-(D + Da), +-(D + 2 Da) with stiction).
     fn switches(&self, _t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
         let v = y[1];
         let edges = match self.law {
@@ -123,20 +122,10 @@ impl Switching for Equations {
             | Regularized::TrigonometricStiction { d, da, .. } => [d, d + da, d + 2.0 * da],
         };
         let count = if edges[0] == edges[2] { 1 } else { 3 };
-        // u' itself first, where it ends steps.
-        let first = usize::from(self.ends_steps_at_rest);
-        if self.ends_steps_at_rest {
-            out[0] = v;
-        }
         for (i, e) in edges[..count].iter().enumerate() {
-            out[first + 2 * i] = v - e;
-            out[first + 2 * i + 1] = v + e;
+            out[2 * i] = v - e;
+            out[2 * i + 1] = v + e;
         }
-        first + 2 * count
-    }
-
-    /// piecewise stops at the band's kinks, not where u' changes sign.
-    fn stops_at(&self, i: usize) -> bool {
-        !(self.ends_steps_at_rest && i == 0)
+        2 * count
     }
 }
