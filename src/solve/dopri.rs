@@ -313,9 +313,58 @@ impl Dense {
 }
 
 impl Dense {
-    /// The extreme of y[0] inside the step, its maximum (`maximum`) or minimum: golden-section
-    /// search on the interpolant, to a fraction of the step far below where its value moves.
+    /// The extreme of y[0] inside the step, its maximum (`maximum`) or minimum, where y[0]'s
+    /// derivative changes sign: the zero of the interpolant's derivative, by Newton's method
+    /// kept inside its bracket. Under the integrating factor y[0] is no polynomial, and a
+    /// golden-section search on the interpolant takes its place.
     fn extreme_of_first(&self, maximum: bool) -> f64 {
+        if self.decaying.iter().any(|j| j == 0) {
+            return self.golden_extreme_of_first(maximum);
+        }
+        let r = |k: usize| self.r[k][0];
+        let (r0, r1, r2, r3, r4) = (r(0), r(1), r(2), r(3), r(4));
+        let value = |x: f64| {
+            let u = 1.0 - x;
+            r0 + x * (r1 + u * (r2 + x * (r3 + u * r4)))
+        };
+        let slope = |x: f64| {
+            let u = 1.0 - x;
+            r1 + (u - x) * r2 + x * (2.0 - 3.0 * x) * r3 + 2.0 * x * u * (u - x) * r4
+        };
+        let curvature =
+            |x: f64| -2.0 * r2 + (2.0 - 6.0 * x) * r3 + 2.0 * (1.0 - 6.0 * x * (1.0 - x)) * r4;
+        let (mut lo, mut hi) = (0.0, 1.0);
+        let (s_lo, s_hi) = (slope(lo), slope(hi));
+        if (s_lo > 0.0) == (s_hi > 0.0) {
+            // The interpolant's ends do not bracket a turn: the larger end stands for it.
+            let sign = if maximum { 1.0 } else { -1.0 };
+            return sign * (sign * value(0.0)).max(sign * value(1.0));
+        }
+        let mut x = s_lo / (s_lo - s_hi);
+        for _ in 0..50 {
+            let s = slope(x);
+            if (s > 0.0) == (s_lo > 0.0) {
+                lo = x;
+            } else {
+                hi = x;
+            }
+            let newton = x - s / curvature(x);
+            let next = if newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            if (next - x).abs() <= 1e-14 {
+                x = next;
+                break;
+            }
+            x = next;
+        }
+        value(x)
+    }
+
+    /// [`Dense::extreme_of_first`] by golden-section search on the interpolant.
+    fn golden_extreme_of_first(&self, maximum: bool) -> f64 {
         let sign = if maximum { 1.0 } else { -1.0 };
         let value = |theta: f64| {
             let mut state = [0.0; MAX_DIM];
@@ -1023,7 +1072,7 @@ mod tests {
     use super::*;
     use crate::solve::narrow::Narrow;
 
-    use crate::solve::test_odes::{AbsCos, Scalar};
+    use crate::solve::test_odes::{AbsCos, Harmonic, Scalar};
 
     /// y' = -2 t y, y(0) = 1: y = exp(-t^2).
     const GAUSS: Scalar = Scalar(|t, y| -2.0 * t * y);
@@ -1309,6 +1358,34 @@ mod tests {
                 "from {y0}: {} vs {exact}",
                 y[0]
             );
+        }
+    }
+
+    impl Switching for Harmonic {
+        fn switches(&self, _t: f64, _y: &[f64], _out: &mut [f64; MAX_SWITCHES]) -> usize {
+            0
+        }
+    }
+
+    /// Oracle: y = cos(t + 0.3) has its extreme |y| = 1 at t = pi - 0.3, inside a step: the
+    /// largest |y[0]| is read off the step's interpolant, not only its ends.
+    #[test]
+    fn the_largest_of_the_first_state_is_read_inside_steps() {
+        for rtol in [1e-5, 1e-8] {
+            let mut y = [0.3f64.cos(), -0.3f64.sin()];
+            let mut largest = y[0].abs();
+            let mut solver = Dopri5::new(rtol, [rtol; MAX_DIM], 10.0);
+            let end = solver
+                .integrate_to_kink(
+                    &Harmonic,
+                    (0.0, 4.0),
+                    &mut y,
+                    &mut Work::default(),
+                    &mut largest,
+                )
+                .unwrap();
+            assert_eq!(end, 4.0);
+            assert!((largest - 1.0).abs() < rtol, "rtol {rtol}: {largest}");
         }
     }
 

@@ -64,13 +64,17 @@ pub struct Case {
     pub reference_note: String,
 }
 
-/// Relative tolerances from `loose` down to 1e-12, two a decade (1, 3).
-pub fn tolerances(loose: f64) -> Vec<Knob> {
+/// The loosest relative tolerance every solver, ours and the peers, is run at: the loosest our
+/// FMUs' tolerance parameters accept.
+const LOOSEST: f64 = 1e-2;
+
+/// Relative tolerances from [`LOOSEST`] down to 1e-12, two a decade (1, 3).
+pub fn tolerances() -> Vec<Knob> {
     let mut out = Vec::new();
     for k in 0..=12 {
         for m in [3.0, 1.0] {
             let t = m * 10f64.powi(-k);
-            if t <= loose * (1.0 + 1e-9) && t >= 1e-12 * (1.0 - 1e-9) {
+            if (1e-12 * (1.0 - 1e-9)..=LOOSEST * (1.0 + 1e-9)).contains(&t) {
                 out.push(Knob::Tolerance(t));
             }
         }
@@ -101,7 +105,7 @@ fn peer_curves<P: problem::Problem + 'static>(spec: Rc<Spec<P>>, peers: &[Peer])
             Curve {
                 name: peer.name().into(),
                 ours: false,
-                knobs: tolerances(1e-2),
+                knobs: tolerances(),
                 run: Rc::new(move |k| peers::run(peer, &spec, tolerance(k))),
                 absent: None,
             }
@@ -198,7 +202,7 @@ pub fn transverse(slip_law: &'static str, kt_factor: f64, scipy: &[(f64, f64)]) 
         curves.push(Curve {
             name: "ours dopri5".into(),
             ours: true,
-            knobs: tolerances(1e-3),
+            knobs: tolerances(),
             run: transverse_ours(slip_law, kt_factor, "dopri5"),
             absent: None,
         });
@@ -206,7 +210,7 @@ pub fn transverse(slip_law: &'static str, kt_factor: f64, scipy: &[(f64, f64)]) 
     curves.push(Curve {
         name: "ours radau5".into(),
         ours: true,
-        knobs: tolerances(1e-3),
+        knobs: tolerances(),
         run: transverse_ours(slip_law, kt_factor, "radau5"),
         absent: None,
     });
@@ -321,21 +325,21 @@ pub fn longitudinal() -> Case {
         Curve {
             name: "ours dopri5".into(),
             ours: true,
-            knobs: tolerances(1e-3),
+            knobs: tolerances(),
             run: longitudinal_ours("dopri5"),
             absent: None,
         },
         Curve {
             name: "ours radau5".into(),
             ours: true,
-            knobs: tolerances(1e-3),
+            knobs: tolerances(),
             run: longitudinal_ours("radau5"),
             absent: None,
         },
         Curve {
             name: "ours closed_form".into(),
             ours: true,
-            knobs: tolerances(1e-3),
+            knobs: tolerances(),
             run: longitudinal_ours("closed_form"),
             absent: None,
         },
@@ -441,21 +445,21 @@ pub fn oscillator_trigonometric() -> Case {
         Curve {
             name: "ours radau5".into(),
             ours: true,
-            knobs: tolerances(1e-3),
+            knobs: tolerances(),
             run: oscillator_ours("trigonometric", "radau5"),
             absent: None,
         },
         Curve {
             name: "ours dopri5".into(),
             ours: true,
-            knobs: tolerances(1e-3),
+            knobs: tolerances(),
             run: oscillator_ours("trigonometric", "dopri5"),
             absent: None,
         },
         Curve {
             name: "ours piecewise".into(),
             ours: true,
-            knobs: tolerances(1e-3),
+            knobs: tolerances(),
             run: oscillator_ours("trigonometric", "piecewise"),
             absent: None,
         },
@@ -507,7 +511,7 @@ pub fn oscillator_exact() -> Case {
         curves.push(Curve {
             name: peer.name().into(),
             ours: false,
-            knobs: tolerances(1e-2),
+            knobs: tolerances(),
             run: Rc::new(move |k| {
                 peers::run_switch(peer, &switch, span, period / 8.0, tolerance(k))
             }),
