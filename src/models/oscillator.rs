@@ -693,9 +693,16 @@ fn close_to_edge(
     work: &mut Work,
 ) -> bool {
     let (edge, _) = equations.band();
+    // The gap must not reach back past a kink inside the band (with stiction, Da below).
+    let room = match equations.law {
+        Regularized::LinearStiction { da, .. } | Regularized::TrigonometricStiction { da, .. } => {
+            da
+        }
+        _ => edge,
+    };
     let s = sgn(state.v);
     let gap = edge - s * state.v;
-    if !(gap > 0.0 && gap < 0.05 * edge) {
+    if !(gap > 0.0 && gap < 0.05 * edge && gap < room) {
         return false;
     }
     let n = equations.dim();

@@ -309,7 +309,6 @@ mod tests {
             let half = t0 + 0.5 * (t - t0);
             assert_eq!(phase.entry(1.0, 0.8, half, &mut evaluations), None);
         }
-        eprintln!("most {most}");
         assert!(most <= 12, "{most}");
     }
 
