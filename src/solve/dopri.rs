@@ -39,6 +39,14 @@ pub trait Switching: Ode {
         &[]
     }
 
+    /// Whether the right-hand side stays C1 where switch `i` changes sign (only its second
+    /// derivative jumps): [`Dopri5::integrate_to_kink`] then lets a step across it stand when
+    /// the step passes its error test, and stops a little past the kink instead of retaking the
+    /// step to end on it.
+    fn smooth_across(&self, _i: usize) -> bool {
+        false
+    }
+
     /// Whether the decay rate's trend over the last step foretells it over the next (it varies
     /// smoothly along the solution between the switches): dopri5 then freezes the rate at the
     /// middle of each step, extrapolated, instead of at its start.
@@ -854,8 +862,10 @@ impl Dopri5 {
             let mut first = None;
             let mut dense = None;
             let mut hit = false;
+            let mut all_smooth = true;
             for i in 0..count {
                 if crossed(sw_old[i], sw_new[i]) {
+                    all_smooth &= ode.smooth_across(i);
                     let d = dense.get_or_insert_with(|| Dense::new(n, y, &tr, h));
                     if predicted == Some(i) {
                         // The end placed on a foreseen kink landed just past it (no sign change
@@ -878,7 +888,10 @@ impl Dopri5 {
                 first = predicted;
             }
             let mut h_taken = h;
-            if theta_min < 1.0 {
+            // A step that crossed only kinks where the right-hand side stays C1 and passed its
+            // error test stands where it stops there: the stop lands a little past them.
+            let across = stop.is_some() && all_smooth && theta_min < 1.0 && tr.err <= 1.0;
+            if theta_min < 1.0 && !across {
                 // Retake the step to end on the first kink; a shorter step from the same point
                 // passes the error test in all but freak cases, which the controller then handles.
                 let h_kink = theta_min * h;
@@ -1387,6 +1400,63 @@ mod tests {
             assert_eq!(end, 4.0);
             assert!((largest - 1.0).abs() < rtol, "rtol {rtol}: {largest}");
         }
+    }
+
+    /// y' = max(cos t, 0)^2: C1 where cos t = 0, its switch.
+    struct CosSquaredOn {
+        smooth: bool,
+    }
+
+    impl Ode for CosSquaredOn {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn rhs(&self, t: f64, _y: &[f64], dydt: &mut [f64]) {
+            dydt[0] = t.cos().max(0.0).powi(2);
+        }
+    }
+
+    impl Switching for CosSquaredOn {
+        fn switches(&self, t: f64, _y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
+            out[0] = t.cos();
+            1
+        }
+        fn smooth_across(&self, _i: usize) -> bool {
+            self.smooth
+        }
+    }
+
+    /// Oracle: y = t/2 + sin(2t)/4 up to pi/2, pi/4 after. Across a kink where the right-hand
+    /// side stays C1, the stop lands past it on a step that passed its error test, and the
+    /// retake that would end the step on it is saved; elsewhere the stop is on the kink.
+    #[test]
+    fn a_stop_at_a_c1_kink_may_land_past_it() {
+        // A first step across the kink: no step before it to foresee the kink from.
+        let t0: f64 = 1.3;
+        let run = |smooth: bool| {
+            let mut y = [0.5 * t0 + 0.25 * (2.0 * t0).sin()];
+            let mut work = Work::default();
+            let mut solver = Dopri5::new(1e-3, [1e-3; MAX_DIM], 10.0);
+            solver.h = 0.5;
+            let end = solver
+                .integrate_to_kink(
+                    &CosSquaredOn { smooth },
+                    (t0, 3.0),
+                    &mut y,
+                    &mut work,
+                    &mut 0.0,
+                )
+                .unwrap();
+            (end, y[0], work.rhs_evaluations)
+        };
+        let quarter = std::f64::consts::FRAC_PI_2;
+        let (end, y, kinked) = run(false);
+        assert!((end - quarter).abs() < 1e-9, "{end}");
+        assert!((y - 0.5 * quarter).abs() < 1e-3, "{y}");
+        let (end, y, smooth) = run(true);
+        assert!(end > quarter + 1e-3, "{end}");
+        assert!((y - 0.5 * quarter).abs() < 1e-3, "{y}");
+        assert!(smooth < kinked, "{smooth} against {kinked}");
     }
 
     /// Oracle: integral of |cos t| over [0, 10] = 6 + sin(10 - 3 pi). Ending the steps on the

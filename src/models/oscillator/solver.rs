@@ -128,4 +128,9 @@ impl Switching for Equations {
         }
         2 * count
     }
+
+    /// The trigonometric law's H is C1 at +-D: its slope falls to 0 there.
+    fn smooth_across(&self, _i: usize) -> bool {
+        matches!(self.law, Regularized::Trigonometric { .. })
+    }
 }
