@@ -318,17 +318,12 @@ impl Dense {
             }
         }
     }
-}
 
-impl Dense {
     /// The extreme of y[0] inside the step, its maximum (`maximum`) or minimum, where y[0]'s
     /// derivative changes sign: the zero of the interpolant's derivative, by Newton's method
-    /// kept inside its bracket. Under the integrating factor y[0] is no polynomial, and a
-    /// golden-section search on the interpolant takes its place.
+    /// kept inside its bracket. y[0] must not decay under the integrating factor (its
+    /// interpolant is then no polynomial; [`Dopri5::integrate_to_kink`] refuses that).
     fn extreme_of_first(&self, maximum: bool) -> f64 {
-        if self.decaying.iter().any(|j| j == 0) {
-            return self.golden_extreme_of_first(maximum);
-        }
         let r = |k: usize| self.r[k][0];
         let (r0, r1, r2, r3, r4) = (r(0), r(1), r(2), r(3), r(4));
         let value = |x: f64| {
@@ -369,35 +364,6 @@ impl Dense {
             x = next;
         }
         value(x)
-    }
-
-    /// [`Dense::extreme_of_first`] by golden-section search on the interpolant.
-    fn golden_extreme_of_first(&self, maximum: bool) -> f64 {
-        let sign = if maximum { 1.0 } else { -1.0 };
-        let value = |theta: f64| {
-            let mut state = [0.0; MAX_DIM];
-            self.at(theta, &mut state);
-            sign * state[0]
-        };
-        let ratio = 0.5 * (5f64.sqrt() - 1.0);
-        let (mut a, mut b) = (0.0, 1.0);
-        let mut c = b - ratio * (b - a);
-        let mut d = a + ratio * (b - a);
-        let (mut fc, mut fd) = (value(c), value(d));
-        for _ in 0..40 {
-            if fc > fd {
-                b = d;
-                (d, fd) = (c, fc);
-                c = b - ratio * (b - a);
-                fc = value(c);
-            } else {
-                a = c;
-                (c, fc) = (d, fd);
-                d = a + ratio * (b - a);
-                fd = value(d);
-            }
-        }
-        sign * fc.max(fd)
     }
 }
 
@@ -785,6 +751,11 @@ impl Dopri5 {
                 "dopri5: needs t1 >= t0, rtol > 0, h_max > 0; got [{t0}, {t1}], rtol {}, h_max {}",
                 self.rtol, self.h_max
             ));
+        }
+        if stop.is_some() && ode.decaying().contains(&0) {
+            return Err(
+                "dopri5: integrate_to_kink reads the extremes of y[0] off the interpolant, which is no polynomial where y[0] decays under the integrating factor".into(),
+            );
         }
         if t1 == t0 {
             return Ok(t1);
