@@ -294,6 +294,15 @@ fn bad_parameters_are_refused_with_the_expected_range() {
     assert!(sim.step_logged(0.0, 0.0, None).is_err());
 }
 
+/// The steady amplitude of `law` over 20 periods by radau5 at rtol = atol = 1e-12: the
+/// regularised laws' reference.
+fn tight_amplitude(law: &str) -> f64 {
+    let mut reference = with_solver(law, "radau5");
+    reference.set(vr::RTOL, 1e-12);
+    reference.set(vr::ATOL, 1e-12);
+    steady_amplitude(&reference, 20).unwrap()
+}
+
 fn with_solver(law: &str, solver: &str) -> ValueSet {
     let mut v = values(law);
     v.set(
@@ -319,10 +328,7 @@ fn explicit_solvers_match_a_tight_radau_reference() {
         "linear_stiction",
         "trigonometric_stiction",
     ] {
-        let mut reference = with_solver(law, "radau5");
-        reference.set(vr::RTOL, 1e-12);
-        reference.set(vr::ATOL, 1e-12);
-        let exact = steady_amplitude(&reference, 20).unwrap();
+        let exact = tight_amplitude(law);
         let mut dopri = with_solver(law, "dopri5");
         dopri.set(vr::RTOL, 1e-10);
         dopri.set(vr::ATOL, 1e-10);
@@ -350,10 +356,7 @@ fn explicit_solvers_match_a_tight_radau_reference() {
 /// ~8 per halving of the step (the kinks cost at most one order).
 #[test]
 fn rk4_converges_on_the_paper_case() {
-    let mut reference = with_solver("trigonometric", "radau5");
-    reference.set(vr::RTOL, 1e-12);
-    reference.set(vr::ATOL, 1e-12);
-    let exact = steady_amplitude(&reference, 20).unwrap();
+    let exact = tight_amplitude("trigonometric");
     let error = |n: f64| {
         let mut v = with_solver("trigonometric", "rk4");
         v.set(vr::STEPS_PER_PERIOD, n);
@@ -645,10 +648,7 @@ fn a_state_saved_inside_a_step_taken_ahead_replays_the_motion() {
 /// sums is dopri5's.
 #[test]
 fn piecewise_meets_the_tolerance_from_fewer_evaluations() {
-    let mut reference = with_solver("trigonometric", "radau5");
-    reference.set(vr::RTOL, 1e-12);
-    reference.set(vr::ATOL, 1e-12);
-    let exact = steady_amplitude(&reference, 20).unwrap();
+    let exact = tight_amplitude("trigonometric");
     let run = |solver: &str, tol: f64, calls: u32| {
         let mut v = with_solver("trigonometric", solver);
         v.set(vr::RTOL, tol);
