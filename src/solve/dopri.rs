@@ -385,7 +385,7 @@ fn stage_factors(x: f64) -> [f64; 7] {
 
 /// Has the switching function gone from `old` to `new` across zero? An old value of exactly 0
 /// (the step started on the switch) does not count.
-fn crossed(old: f64, new: f64) -> bool {
+pub(super) fn crossed(old: f64, new: f64) -> bool {
     old != 0.0 && (new == 0.0 || (new > 0.0) != (old > 0.0))
 }
 

@@ -6,6 +6,7 @@
 
 pub mod adaptive;
 pub mod dense;
+pub mod dop853;
 pub mod dopri;
 pub mod expm;
 pub mod narrow;

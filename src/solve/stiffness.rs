@@ -11,8 +11,9 @@
 //!
 //! It only informs the user: the explicit solver still finishes, accurately but slowly.
 
-/// h |lambda| past which a step counts as held by stability: dopri5's stability region reaches
-/// 3.3 along the negative real axis (Hairer's value).
+/// h |lambda| past which a step counts as held by stability, unless the integrator gives its own
+/// bound ([`StiffnessTest::with_bound`]): dopri5's stability region reaches 3.3 along the
+/// negative real axis (Hairer's value).
 const SUSPICIOUS_H_LAMBDA: f64 = 3.25;
 
 /// h |lambda| of the stages past which a step whose integrating factor's exponent is past the
@@ -31,8 +32,10 @@ const CLEARING_TESTS: u32 = 6;
 const TEST_EVERY: u64 = 1000;
 
 /// The counters of the test, kept by an integrator across its calls.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StiffnessTest {
+    /// h |lambda| past which a step counts as held by stability.
+    bound: f64,
     accepted: u64,
     suspicious: u32,
     clear: u32,
@@ -42,7 +45,26 @@ pub struct StiffnessTest {
     reported: bool,
 }
 
+impl Default for StiffnessTest {
+    fn default() -> Self {
+        Self::with_bound(SUSPICIOUS_H_LAMBDA)
+    }
+}
+
 impl StiffnessTest {
+    /// The test of an integrator whose stability region reaches `bound` along the negative real
+    /// axis.
+    pub fn with_bound(bound: f64) -> Self {
+        StiffnessTest {
+            bound,
+            accepted: 0,
+            suspicious: 0,
+            clear: 0,
+            found_at: None,
+            reported: false,
+        }
+    }
+
     /// Whether the accepted step now ending should be tested.
     pub fn due(&mut self) -> bool {
         self.accepted += 1;
@@ -55,8 +77,8 @@ impl StiffnessTest {
     /// size along the last stages, `sigma_h` the exponent of the integrating factor over the
     /// step (0 without one).
     pub fn record(&mut self, h_lambda: f64, sigma_h: f64, t: f64) {
-        let held_by_decay = sigma_h > SUSPICIOUS_H_LAMBDA && h_lambda >= COUPLED_H_LAMBDA;
-        if h_lambda > SUSPICIOUS_H_LAMBDA || held_by_decay {
+        let held_by_decay = sigma_h > self.bound && h_lambda >= COUPLED_H_LAMBDA;
+        if h_lambda > self.bound || held_by_decay {
             self.clear = 0;
             self.suspicious += 1;
             if self.suspicious == STIFF_AFTER {
