@@ -181,7 +181,7 @@ fn transverse_solvers_converge_at_kt_x1000() {
     let m = "TransverseFriction";
     for solver in stability::solvers(m) {
         let knobs = match solver {
-            "dopri5" | "radau5" => [tol(1e-5), tol(1e-7), tol(1e-10)],
+            "dopri5" | "radau5" | "dop853" => [tol(1e-5), tol(1e-7), tol(1e-10)],
             // The explicit schemes' bound: h kt |v|/FC < 2.8, some 16000 steps a period.
             "rk4" | "two_phase" => [
                 Knob::Steps(32_000),

@@ -36,6 +36,7 @@ SOLVERS = {
     "rk4": Style("#2ca02c", "^", "-."),
     "exponential": Style("#ff7f0e", "D", ":"),
     "two_phase": Style("#9467bd", "v", (0, (6, 2, 1, 2))),  # the paper's own scheme (paper T)
+    "dop853": Style("#8c6d31", "H", (0, (3, 1, 1, 1))),
 }
 # Friction laws (scenes L and O) and slip laws (scene T). The exact switch models, the oracles
 # the regularised laws are compared with, are black and grey and dashed, so a law drawn under

@@ -102,6 +102,7 @@ switch!(
         TwoPhase = "two_phase",
         Radau5 = "radau5",
         Exponential = "exponential",
+        Dop853 = "dop853",
     }
 );
 switch!(

@@ -31,6 +31,7 @@ use super::{
 use crate::friction::lugre2d::{radial_rates, Contact, LuGre2d, SlipLaw};
 use crate::models::transverse::table::vr;
 use crate::solve::adaptive::Adaptive;
+use crate::solve::dop853::Dop853;
 use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
 use crate::solve::narrow::Narrow;
 use crate::solve::phase::{cos_turns, turns};
@@ -102,10 +103,16 @@ const RADAU5_FINE_BAND_RTOL: f64 = 1e-7;
 /// adaptive solvers, none for the others.
 fn band_points(solver: &Solver) -> &'static [f64] {
     match solver {
-        Solver::Adaptive(Adaptive::Dopri5(d)) if d.rtol <= DOPRI5_FINE_BAND_RTOL => {
+        Solver::Adaptive(Adaptive::Dopri5(Dopri5 { rtol, .. }))
+        | Solver::Dop853(Dop853 { rtol, .. })
+            if *rtol <= DOPRI5_FINE_BAND_RTOL =>
+        {
             &BAND_POINTS_FINE
         }
-        Solver::Adaptive(Adaptive::Dopri5(d)) if d.rtol <= DOPRI5_COARSE_BAND_RTOL => {
+        Solver::Adaptive(Adaptive::Dopri5(Dopri5 { rtol, .. }))
+        | Solver::Dop853(Dop853 { rtol, .. })
+            if *rtol <= DOPRI5_COARSE_BAND_RTOL =>
+        {
             &BAND_POINTS_COARSE
         }
         Solver::Adaptive(Adaptive::Radau5(r)) if r.rtol <= RADAU5_FINE_BAND_RTOL => {
@@ -393,6 +400,7 @@ impl Equations<'_> {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Solver {
     Adaptive(Adaptive),
+    Dop853(Dop853),
     Rk4 { steps_per_period: u32 },
     TwoPhase(two_phase::TwoPhase),
     Exponential(exponential::Exponential),
@@ -403,6 +411,7 @@ impl Solver {
     fn rtol(&self) -> Option<f64> {
         match self {
             Solver::Adaptive(a) => Some(a.rtol()),
+            Solver::Dop853(d) => Some(d.rtol),
             Solver::Rk4 { .. } | Solver::TwoPhase(_) | Solver::Exponential(_) => None,
         }
     }
@@ -684,7 +693,7 @@ impl Transverse {
             TransverseSolver::Exponential => Solver::Exponential(exponential::Exponential {
                 steps_per_period: steps,
             }),
-            TransverseSolver::Dopri5 | TransverseSolver::Radau5 => {
+            TransverseSolver::Dopri5 | TransverseSolver::Radau5 | TransverseSolver::Dop853 => {
                 let mut scale = tolerance_scales(&p, vd_start);
                 if trim.axial {
                     // The 1D equations leave the y axis at rest: out of the error control, so
@@ -696,6 +705,8 @@ impl Transverse {
                     let mut radau = Radau5::new(rtol, rtol, 0.05 / f);
                     radau.atol_scale = scale;
                     Solver::Adaptive(Adaptive::Radau5(radau))
+                } else if name == TransverseSolver::Dop853 {
+                    Solver::Dop853(Dop853::new(rtol, scale.map(|s| rtol * s), 0.05 / f))
                 } else {
                     Solver::Adaptive(Adaptive::Dopri5(Dopri5::new(
                         rtol,
@@ -784,7 +795,7 @@ impl Transverse {
         };
         let eq: &dyn Switching = if self.trim.axial { &axial } else { &planar };
         match &mut self.solver {
-            Solver::Adaptive(_) if round_off => {
+            Solver::Adaptive(_) | Solver::Dop853(_) if round_off => {
                 let mut rk = Rk4 {
                     h_max: f64::INFINITY,
                 };
@@ -801,6 +812,12 @@ impl Transverse {
             }
             Solver::Adaptive(Adaptive::Radau5(r)) => {
                 r.integrate_switched(eq, t0, t1, &mut self.y, &mut self.work)?
+            }
+            Solver::Dop853(d) if self.trim.axial => {
+                d.integrate_switched(&axial, t0, t1, &mut self.y, &mut self.work)?
+            }
+            Solver::Dop853(d) => {
+                d.integrate_switched(&planar, t0, t1, &mut self.y, &mut self.work)?
             }
             Solver::Rk4 { steps_per_period } => {
                 let mut rk = Rk4 {
@@ -920,10 +937,11 @@ impl Simulation for Transverse {
         if let Some(notice) = self.notice.take() {
             return Some(notice);
         }
-        let Solver::Adaptive(a) = &mut self.solver else {
-            return None;
-        };
-        let t = a.stiff_since()?;
+        let t = match &mut self.solver {
+            Solver::Adaptive(a) => a.stiff_since(),
+            Solver::Dop853(d) => d.stiff_since(),
+            Solver::Rk4 { .. } | Solver::TwoPhase(_) | Solver::Exponential(_) => None,
+        }?;
         Some(super::stiff_warning(t, "radau5 or exponential"))
     }
 
@@ -942,6 +960,7 @@ impl Simulation for Transverse {
         out.extend_from_slice(&self.mean.save());
         match &self.solver {
             Solver::Adaptive(a) => out.push(a.step_hint()),
+            Solver::Dop853(d) => out.push(d.h),
             Solver::Rk4 { .. } | Solver::Exponential(_) => out.push(0.0),
             Solver::TwoPhase(tp) => out.extend_from_slice(&tp.save()),
         }
@@ -962,6 +981,7 @@ impl Simulation for Transverse {
         self.mean.restore(&state[3 + MAX_DIM..base]);
         match &mut self.solver {
             Solver::Adaptive(a) => a.set_step_hint(state[base]),
+            Solver::Dop853(d) => d.h = state[base],
             Solver::Rk4 { .. } | Solver::Exponential(_) => {}
             Solver::TwoPhase(tp) => tp.restore(&state[base..]),
         }

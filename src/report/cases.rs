@@ -79,6 +79,7 @@ pub fn transverse(slip_law: &'static str) -> Case {
     const PERIODS: u32 = 150;
     let mut settings = tolerances("dopri5", 4, 10);
     settings.extend(tolerances("radau5", 4, 9));
+    settings.extend(tolerances("dop853", 4, 10));
     settings.extend(steps("rk4", &[50, 100, 200, 400, 800, 1600]));
     settings.extend(steps("exponential", &[50, 100, 200, 400, 800, 1600, 3200]));
     if slip_law == "split" {

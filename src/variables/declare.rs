@@ -127,7 +127,7 @@ pub const fn tolerance(value_reference: u32, start: f64) -> Variable {
     real_parameter(
         "tolerance",
         value_reference,
-        "Relative tolerance of dopri5 and radau5",
+        "Relative tolerance of the adaptive solvers",
         start,
         "",
         1e-14,

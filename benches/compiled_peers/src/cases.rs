@@ -206,6 +206,13 @@ pub fn transverse(slip_law: &'static str, kt_factor: f64, scipy: &[(f64, f64)]) 
             run: transverse_ours(slip_law, kt_factor, "dopri5"),
             absent: None,
         });
+        curves.push(Curve {
+            name: "ours dop853".into(),
+            ours: true,
+            knobs: tolerances(),
+            run: transverse_ours(slip_law, kt_factor, "dop853"),
+            absent: None,
+        });
     }
     curves.push(Curve {
         name: "ours radau5".into(),

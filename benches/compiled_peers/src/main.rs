@@ -13,6 +13,7 @@
 
 mod cases;
 mod cvode;
+mod dop853;
 mod peers;
 mod problem;
 

@@ -1,5 +1,6 @@
 //! The compiled peers on a [`Spec`]: SUNDIALS CVODE (BDF, Adams), diffsol (bdf, esdirk34) and
-//! ode_solvers (Dopri5, Dop853), each as its documentation sets it up, with the same relative
+//! ode_solvers (Dopri5, Dop853), each as its documentation sets it up, and a textbook Dop853
+//! ([`crate::dop853`]), with the same relative
 //! tolerance and the same absolute tolerance per state as ours.
 
 use crate::cvode::{self, Cvode, Stop};
@@ -17,15 +18,17 @@ pub enum Peer {
     DiffsolEsdirk34,
     Dopri5,
     Dop853,
+    TextbookDop853,
 }
 
-pub const ALL: [Peer; 6] = [
+pub const ALL: [Peer; 7] = [
     Peer::CvodeBdf,
     Peer::CvodeAdams,
     Peer::DiffsolBdf,
     Peer::DiffsolEsdirk34,
     Peer::Dopri5,
     Peer::Dop853,
+    Peer::TextbookDop853,
 ];
 
 impl Peer {
@@ -37,12 +40,13 @@ impl Peer {
             Peer::DiffsolEsdirk34 => "diffsol esdirk34",
             Peer::Dopri5 => "ode_solvers Dopri5",
             Peer::Dop853 => "ode_solvers Dop853",
+            Peer::TextbookDop853 => "textbook Dop853",
         }
     }
 
     /// Whether the peer locates events (root functions).
     pub fn locates_events(self) -> bool {
-        !matches!(self, Peer::Dopri5 | Peer::Dop853)
+        !matches!(self, Peer::Dopri5 | Peer::Dop853 | Peer::TextbookDop853)
     }
 }
 
@@ -117,7 +121,7 @@ fn leg<P: Problem>(
         Peer::DiffsolBdf | Peer::DiffsolEsdirk34 => {
             unpanicked(|| diffsol_leg(peer, problem, span, y0, tol, scale, extremes))
         }
-        Peer::Dopri5 | Peer::Dop853 => match y0.len() {
+        Peer::Dopri5 | Peer::Dop853 | Peer::TextbookDop853 => match y0.len() {
             1 => explicit_leg::<1, P>(peer, problem, span, y0, tol, scale, extremes),
             2 => explicit_leg::<2, P>(peer, problem, span, y0, tol, scale, extremes),
             5 => explicit_leg::<5, P>(peer, problem, span, y0, tol, scale, extremes),
@@ -356,7 +360,16 @@ fn explicit_leg<const N: usize, P: Problem>(
     // The crate's defaults (Hairer's), with no limit on the number of steps and without the
     // stiffness test, which ends the run with an error (Dop853 ends scene L's that way at
     // rtol 3e-4 and below); ours warns once and goes on.
-    let (xs, ys, evaluations) = if peer == Peer::Dop853 {
+    let (xs, ys, evaluations) = if peer == Peer::TextbookDop853 {
+        let mut start = [0.0; N];
+        start.copy_from_slice(y0);
+        let (xs, ys, evaluations) = crate::dop853::integrate(problem, (t0, t1), start, tol, scale)?;
+        let scaled = ys
+            .iter()
+            .map(|y| SVector::<f64, N>::from_fn(|i, _| y[i] / s[i]))
+            .collect::<Vec<_>>();
+        (xs, scaled, evaluations)
+    } else if peer == Peer::Dop853 {
         let mut solver = Dop853::from_param(
             system,
             t0,
@@ -379,7 +392,7 @@ fn explicit_leg<const N: usize, P: Problem>(
         (
             solver.x_out().clone(),
             solver.y_out().clone(),
-            stats.num_eval,
+            u64::from(stats.num_eval),
         )
     } else {
         let mut solver = Dopri5::from_param(
@@ -404,7 +417,7 @@ fn explicit_leg<const N: usize, P: Problem>(
         (
             solver.x_out().clone(),
             solver.y_out().clone(),
-            stats.num_eval,
+            u64::from(stats.num_eval),
         )
     };
     let last = xs.len().checked_sub(1).ok_or("no output")?;
@@ -419,7 +432,7 @@ fn explicit_leg<const N: usize, P: Problem>(
         x
     };
     let mut largest = 0.0f64;
-    let mut rhs = u64::from(evaluations);
+    let mut rhs = evaluations;
     if extremes {
         // Where u' changes sign between two step ends: the extreme of the quintic through u,
         // u', u'' at both (u'' from the right-hand side there).
@@ -554,8 +567,8 @@ pub fn run_switch(
                 }
             }
         }
-        Peer::Dopri5 | Peer::Dop853 => {
-            return Err("no event location in ode_solvers".into());
+        Peer::Dopri5 | Peer::Dop853 | Peer::TextbookDop853 => {
+            return Err("no event location in ode_solvers or the textbook Dop853".into());
         }
     }
     Ok(Outcome {

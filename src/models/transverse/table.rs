@@ -76,6 +76,10 @@ pub const SOLVER: EnumType = EnumType {
             "exponential",
             "steps_per_period fixed steps per vibration period, cut where v1, v2 (split) or v1 + v2 (total) change sign: exact exponential bristle update for frozen velocities (stable at any kt) around an explicit midpoint step of the body; second order; for stiff contacts; needs h sqrt(kt/m) < 2",
         ),
+        (
+            "dop853",
+            "Adaptive Dormand-Prince 8(5,3) to `tolerance`, for tight tolerances (1e-7 and below) on smooth motion, as the total slip law's steady vibration; steps end at the same kinks as dopri5; no integrating factor, so at loose tolerances and on stiff contacts dopri5 or radau5 take fewer steps",
+        ),
     ],
 };
 

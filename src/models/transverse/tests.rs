@@ -81,28 +81,48 @@ fn held_body_matches_scene_l_lugre() {
 /// too, where steps also end inside the Stribeck band. Without those ends the split law's error
 /// read 3.8e-7 here at 3e-7 (its bump in |v2|/g(v2), a tenth of a microsecond wide, fell
 /// between the stages); with the coarse ends alone at every tolerance, 1.7e-8 at 1e-8.
+/// dop853 meets the same bounds against the same reference.
 #[test]
-fn dopri5_meets_its_tolerance_for_both_slip_laws() {
+fn dopri5_and_dop853_meet_their_tolerance_for_both_slip_laws() {
     for slip in ["split", "total"] {
         let mut v = values("dopri5", slip);
         v.set(vr::INITIAL, f64::from(INITIAL.value_of("sliding").unwrap()));
         v.set(vr::TOLERANCE, 1e-12);
         let reference = mean_after(&v, 20);
-        for (rtol, bound) in [
-            (1e-6, 1e-6),
-            (3e-7, 3e-7),
-            (1e-7, 1e-7),
-            (1e-8, 1e-8),
-            (1e-10, 1e-9),
-        ] {
-            v.set(vr::TOLERANCE, rtol);
-            let mean = mean_after(&v, 20);
-            assert!(
-                (mean / reference - 1.0).abs() < bound,
-                "{slip} at rtol {rtol:e}: {mean} vs {reference}"
-            );
+        for solver in ["dopri5", "dop853"] {
+            v.set(vr::SOLVER, f64::from(SOLVER.value_of(solver).unwrap()));
+            for (rtol, bound) in [
+                (1e-6, 1e-6),
+                (3e-7, 3e-7),
+                (1e-7, 1e-7),
+                (1e-8, 1e-8),
+                (1e-10, 1e-9),
+            ] {
+                v.set(vr::TOLERANCE, rtol);
+                let mean = mean_after(&v, 20);
+                assert!(
+                    (mean / reference - 1.0).abs() < bound,
+                    "{slip}, {solver} at rtol {rtol:e}: {mean} vs {reference}"
+                );
+            }
         }
     }
+}
+
+/// On the benchmark case's total law at rtol 1e-10, the eighth-order pair takes fewer
+/// right-hand sides than dopri5 (its reason to be offered).
+#[test]
+fn dop853_takes_fewer_right_hand_sides_at_a_tight_tolerance() {
+    let work = |solver: &str| {
+        let v = benchmark_case(solver, "total", 1.0, 1e-10);
+        let mut sim = Transverse::new(&v, 0.0).unwrap();
+        for _ in 0..10 {
+            sim.do_step(1.0 / 3000.0, &v).unwrap();
+        }
+        sim.work.rhs_evaluations
+    };
+    let (eighth, fifth) = (work("dop853"), work("dopri5"));
+    assert!(3 * eighth < 2 * fifth, "dop853 {eighth}, dopri5 {fifth}");
 }
 
 /// Oracle: the split-law ODE (dopri5, tight); the paper's scheme converges to it with first
@@ -127,7 +147,14 @@ fn two_phase_converges_to_split_law_with_first_order() {
 /// save/restore in the middle of a run continues it exactly, for every solver.
 #[test]
 fn restore_continues_identically() {
-    for solver in ["dopri5", "rk4", "two_phase", "radau5", "exponential"] {
+    for solver in [
+        "dopri5",
+        "rk4",
+        "two_phase",
+        "radau5",
+        "exponential",
+        "dop853",
+    ] {
         let v = values(solver, "split");
         let mut a = Transverse::new(&v, 0.0).unwrap();
         a.do_step(1e-4, &v).unwrap();
@@ -184,7 +211,7 @@ fn adaptive_solvers_meet_the_tolerance_at_large_vibration_amplitudes() {
                 mean_after(&v, 30)
             };
             let reference = case("radau5", 1e-10);
-            for solver in ["dopri5", "radau5"] {
+            for solver in ["dopri5", "radau5", "dop853"] {
                 let error = (case(solver, 1e-6) / reference - 1.0).abs();
                 assert!(error < 1e-5, "{slip}, {solver} at va {va}: {error:e}");
             }
@@ -344,7 +371,7 @@ fn trimmed_model_without_the_mean_matches_the_full_one() {
 #[test]
 fn trimmed_restore_continues_identically() {
     for (va, fixed) in [(0.0, vec![vr::VA]), (2e-3, vec![])] {
-        for solver in ["dopri5", "radau5", "rk4", "exponential"] {
+        for solver in ["dopri5", "radau5", "rk4", "exponential", "dop853"] {
             let mut v = values(solver, "split");
             v.set(vr::VA, va);
             let scope = scope_keeping(&[vr::FFX, vr::X], &fixed);
@@ -387,10 +414,14 @@ fn adaptive_solvers_run_through_the_bristle_passing_zero() {
                 }
                 sim.dissipated_energy()
             };
-            let (explicit, implicit) = (run("dopri5"), run("radau5"));
+            let (explicit, implicit, eighth) = (run("dopri5"), run("radau5"), run("dop853"));
             assert!(
                 (implicit / explicit - 1.0).abs() < 10.0 * tol,
                 "{slip} at rtol {tol}: {implicit:e} vs {explicit:e}"
+            );
+            assert!(
+                (eighth / explicit - 1.0).abs() < 10.0 * tol,
+                "{slip} at rtol {tol}: dop853 {eighth:e} vs {explicit:e}"
             );
         }
     }
