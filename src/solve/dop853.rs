@@ -1,20 +1,18 @@
 //! Dormand-Prince 8(5,3) with step-size control and dense output (Hairer, Norsett & Wanner,
-//! Solving ODEs I, II.10, and Hairer's `dop853` code), with what [`super::dopri::Dopri5`] has
-//! around its steps: steps that end where a switching function changes sign, the narrow-feature
-//! watch, and Lawson's integrating factor for the components that relax at a known rate (the
-//! stages take u = e^(sigma tau) (y - c), sigma frozen over the step, c where the frozen decay
-//! leads from the step's start; see `dopri.rs`).
+//! Solving ODEs I, II.10, and Hairer's `dop853` code), with steps that end where a switching
+//! function changes sign and the narrow-feature watch, as [`super::dopri::Dopri5`] has them.
 //!
 //! An eighth-order pair spends twelve right-hand sides a step where dopri5 spends six, and takes
 //! far longer steps at tight tolerances on a smooth solution (scene T's steady vibration under
-//! the total slip law: docs/performance.md). A kink costs the step that crosses it, the dense
-//! output's three further stages, and the step retaken to end on it: no kink is foreseen from
-//! the step before, so where kinks come every few steps (the split law) dopri5 is cheaper.
+//! the total slip law: docs/performance.md). It has no integrating factor: Lawson's, as dopri5
+//! takes it, cost this pair accuracy on scene T (the factor e^(sigma tau) enters what the
+//! stages integrate), so a decaying component sets its step once h sigma nears the stability
+//! bound (about 6); on stiff contacts dopri5 (with the factor) or radau5 is the choice. A kink
+//! costs the step that crosses it, the dense output's three further stages, and the step
+//! retaken to end on it: no kink is foreseen from the step before, so where kinks come every
+//! few steps (the split law) dopri5 is cheaper.
 
-use super::dopri::{
-    crossed, Decaying, Switching, MAX_DECAYING, MAX_DECAY_PER_STEP, MAX_SWITCHES,
-    MIN_DECAY_PER_STEP,
-};
+use super::dopri::{crossed, Switching, MAX_SWITCHES};
 use super::narrow::{Verdict, Watch};
 use super::stiffness::StiffnessTest;
 use super::{Integrator, Ode, Work, MAX_DIM};
@@ -431,25 +429,16 @@ pub struct Dop853 {
     stiffness: StiffnessTest,
 }
 
-/// One attempted step: the sixteen stages (the last four once the dense output or the next
-/// step asks for them), the new state, the last stage's argument (for the stiffness test) and
-/// the error norm. With the integrating factor the decaying components' stages are those of
-/// u = e^(sigma tau) (y - c), g_s (k_s + sigma (y_s - c)) with g_s = e^(sigma c_s h), and the
-/// last stage's argument is u's.
+/// One attempted step: the twelve stages (and, once the dense output is built, the derivative
+/// at the end and the three further stages), the new state, the argument of the last stage
+/// (for the stiffness test) and the error norm.
 struct Trial {
     k: [[f64; MAX_DIM]; 16],
     y_new: [f64; MAX_DIM],
     last_argument: [f64; MAX_DIM],
     err: f64,
-    /// Whether k[12], the derivative at y_new, has been evaluated; `k_end` holds it plain (the
-    /// next step's first stage), k[12] as a stage.
+    /// Whether k[12], the derivative at y_new, has been evaluated.
     has_end: bool,
-    k_end: [f64; MAX_DIM],
-    /// The integrating factor's rate (0: none), the components it covers, g_s and c.
-    sigma: f64,
-    decaying: Decaying,
-    g: [f64; 16],
-    shift: [f64; MAX_DECAYING],
 }
 
 impl Trial {
@@ -460,33 +449,15 @@ impl Trial {
             last_argument: [0.0; MAX_DIM],
             err: 0.0,
             has_end: false,
-            k_end: [0.0; MAX_DIM],
-            sigma: 0.0,
-            decaying: Decaying::NONE,
-            g: [1.0; 16],
-            shift: [0.0; MAX_DECAYING],
         }
-    }
-
-    /// u at the step's end (y_new, with the decaying components taken to u).
-    fn u_new(&self) -> [f64; MAX_DIM] {
-        let mut u = self.y_new;
-        for (m, j) in self.decaying.iter().enumerate() {
-            u[j] = (u[j] - self.shift[m]) * self.g[12];
-        }
-        u
     }
 }
 
-/// The dense output of a trial, of order 7 inside the step: u(t + theta h) =
-/// u + theta (F0 + (1 - theta) (F1 + theta (F2 + ... (1 - theta) (F5 + theta F6)))), and y = u
-/// but for the decaying components, y = c + u e^(-sigma theta h).
+/// The dense output of a trial, of order 7 inside the step: y(t + theta h) =
+/// y + theta (F0 + (1 - theta) (F1 + theta (F2 + ... (1 - theta) (F5 + theta F6)))).
 struct Dense {
-    u0: [f64; MAX_DIM],
+    y0: [f64; MAX_DIM],
     f: [[f64; MAX_DIM]; 7],
-    sigma_h: f64,
-    decaying: Decaying,
-    shift: [f64; MAX_DECAYING],
 }
 
 impl Dense {
@@ -500,13 +471,7 @@ impl Dense {
             acc = f[2][j] + u * acc;
             acc = f[1][j] + theta * acc;
             acc = f[0][j] + u * acc;
-            out[j] = self.u0[j] + theta * acc;
-        }
-        if !self.decaying.is_empty() {
-            let back = (-self.sigma_h * theta).exp();
-            for (m, j) in self.decaying.iter().enumerate() {
-                out[j] = self.shift[m] + out[j] * back;
-            }
+            out[j] = self.y0[j] + theta * acc;
         }
     }
 }
@@ -528,8 +493,7 @@ impl Dop853 {
         self.stiffness.take()
     }
 
-    /// Takes the step `h` from `(t, y)` with first stage `k1` into `tr`, the decay rate being
-    /// `sigma_start` at t and taken as `sigma` over the step.
+    /// Takes the step `h` from `(t, y)` with first stage `k1` into `tr`.
     // The loops over the states index y, the stages and the results together.
     #[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
     fn trial<S: Switching + ?Sized>(
@@ -539,7 +503,6 @@ impl Dop853 {
         y: &[f64],
         k1: &[f64; MAX_DIM],
         h: f64,
-        (sigma_start, sigma): (f64, f64),
         tr: &mut Trial,
         work: &mut Work,
     ) {
@@ -549,74 +512,39 @@ impl Dop853 {
         let coupled = ode.coupled();
         tr.k[0] = *k1;
         tr.has_end = false;
-        let decaying = Decaying::new(ode.decaying(), n);
-        let lawson = sigma_start.min(sigma) * h > MIN_DECAY_PER_STEP && !decaying.is_empty();
-        let mut u0 = [0.0; MAX_DIM];
-        u0[..n].copy_from_slice(&y[..n]);
-        if lawson {
-            tr.sigma = sigma.min(MAX_DECAY_PER_STEP / h);
-            tr.decaying = decaying;
-            for s in 1..13 {
-                tr.g[s] = (tr.sigma * h * C[s]).exp();
-            }
-            let sigma_0 = sigma_start.min(MAX_DECAY_PER_STEP / h);
-            for (m, j) in decaying.iter().enumerate() {
-                tr.shift[m] = y[j] + k1[j] / sigma_0;
-                u0[j] -= tr.shift[m];
-                tr.k[0][j] += tr.sigma * u0[j];
-            }
-        } else {
-            tr.sigma = 0.0;
-            tr.decaying = Decaying::NONE;
-        }
-        let mut arg = u0;
+        let mut arg = [0.0; MAX_DIM];
+        arg[..n].copy_from_slice(&y[..n]);
         for s in 1..12 {
             for j in 0..coupled {
                 let mut sum = 0.0;
                 for (a, k) in A[s][..s].iter().zip(&tr.k[..s]) {
                     sum += a * k[j];
                 }
-                arg[j] = u0[j] + h * sum;
+                arg[j] = y[j] + h * sum;
             }
-            let mut plain = arg;
-            for (m, j) in tr.decaying.iter().enumerate() {
-                plain[j] = tr.shift[m] + arg[j] / tr.g[s];
-            }
-            let (_, rest) = tr.k.split_at_mut(s);
-            ode.rhs(t + C[s] * h, &plain[..n], &mut rest[0][..n]);
-            for (m, j) in tr.decaying.iter().enumerate() {
-                tr.k[s][j] = tr.g[s] * (tr.k[s][j] + tr.sigma * (plain[j] - tr.shift[m]));
-            }
+            let (done, rest) = tr.k.split_at_mut(s);
+            debug_assert_eq!(done.len(), s);
+            ode.rhs(t + C[s] * h, &arg[..n], &mut rest[0][..n]);
         }
         work.rhs_evaluations += 11;
         tr.last_argument = arg;
-        let mut e5 = [0.0; MAX_DIM];
-        let mut e3 = [0.0; MAX_DIM];
-        for j in 0..n {
-            let mut b = 0.0;
-            for s in 0..12 {
-                b += A[12][s] * tr.k[s][j];
-                e5[j] += E5[s] * tr.k[s][j];
-                e3[j] += E3[s] * tr.k[s][j];
-            }
-            tr.y_new[j] = u0[j] + h * b;
-        }
-        for (m, j) in tr.decaying.iter().enumerate() {
-            // Back to y, and the errors of u in y's units.
-            tr.y_new[j] = tr.shift[m] + tr.y_new[j] / tr.g[12];
-            e5[j] /= tr.g[12];
-            e3[j] /= tr.g[12];
-        }
         let (mut sum5, mut sum3, mut controlled) = (0.0, 0.0, 0);
         for j in 0..n {
+            let (mut b, mut e5, mut e3) = (0.0, 0.0, 0.0);
+            for s in 0..12 {
+                b += A[12][s] * tr.k[s][j];
+                e5 += E5[s] * tr.k[s][j];
+                e3 += E3[s] * tr.k[s][j];
+            }
+            tr.y_new[j] = y[j] + h * b;
             // An infinite atol leaves a quadrature out of the error control and the count.
             if self.atol[j] == f64::INFINITY {
                 continue;
             }
             controlled += 1;
             let scale = self.atol[j] + self.rtol * y[j].abs().max(tr.y_new[j].abs());
-            sum5 += (e5[j] / scale).powi(2);
-            sum3 += (e3[j] / scale).powi(2);
+            sum5 += (e5 / scale).powi(2);
+            sum3 += (e3 / scale).powi(2);
         }
         let mut denominator = sum5 + 0.01 * sum3;
         if denominator <= 0.0 {
@@ -626,17 +554,12 @@ impl Dop853 {
         tr.err = if err.is_finite() { err } else { f64::INFINITY };
     }
 
-    /// The derivative at the trial's end (the next step's first stage), once: plain into
-    /// `k_end`, as a stage into k[12].
+    /// The derivative at the trial's end into k[12] (the next step's first stage), once.
     fn end_derivative<S: Switching + ?Sized>(ode: &S, t_end: f64, tr: &mut Trial, work: &mut Work) {
         if !tr.has_end {
             let n = ode.dim().min(MAX_DIM);
-            ode.rhs(t_end, &tr.y_new[..n], &mut tr.k_end[..n]);
+            ode.rhs(t_end, &tr.y_new[..n], &mut tr.k[12][..n]);
             work.rhs_evaluations += 1;
-            tr.k[12] = tr.k_end;
-            for (m, j) in tr.decaying.iter().enumerate() {
-                tr.k[12][j] = tr.g[12] * (tr.k_end[j] + tr.sigma * (tr.y_new[j] - tr.shift[m]));
-            }
             tr.has_end = true;
         }
     }
@@ -654,69 +577,65 @@ impl Dop853 {
     ) -> Dense {
         let n = ode.dim().min(MAX_DIM);
         Self::end_derivative(ode, t + h, tr, work);
-        let mut u0 = [0.0; MAX_DIM];
-        u0[..n].copy_from_slice(&y[..n]);
-        for (m, j) in tr.decaying.iter().enumerate() {
-            u0[j] -= tr.shift[m];
-        }
+        let mut arg = [0.0; MAX_DIM];
         for s in 13..16 {
-            let mut arg = u0;
             for j in 0..n {
                 let mut sum = 0.0;
                 for (a, k) in A[s][..s].iter().zip(&tr.k[..s]) {
                     sum += a * k[j];
                 }
-                arg[j] = u0[j] + h * sum;
-            }
-            let g = (tr.sigma * h * C[s]).exp();
-            for (m, j) in tr.decaying.iter().enumerate() {
-                arg[j] = tr.shift[m] + arg[j] / g;
+                arg[j] = y[j] + h * sum;
             }
             let (_, rest) = tr.k.split_at_mut(s);
             ode.rhs(t + C[s] * h, &arg[..n], &mut rest[0][..n]);
-            for (m, j) in tr.decaying.iter().enumerate() {
-                tr.k[s][j] = g * (tr.k[s][j] + tr.sigma * (arg[j] - tr.shift[m]));
-            }
         }
         work.rhs_evaluations += 3;
-        let u_new = tr.u_new();
-        let mut f = [[0.0; MAX_DIM]; 7];
+        let mut d = Dense {
+            y0: [0.0; MAX_DIM],
+            f: [[0.0; MAX_DIM]; 7],
+        };
+        d.y0[..n].copy_from_slice(&y[..n]);
         for j in 0..n {
-            let du = u_new[j] - u0[j];
-            f[0][j] = du;
-            f[1][j] = h * tr.k[0][j] - du;
-            f[2][j] = 2.0 * du - h * (tr.k[12][j] + tr.k[0][j]);
+            let dy = tr.y_new[j] - y[j];
+            d.f[0][j] = dy;
+            d.f[1][j] = h * tr.k[0][j] - dy;
+            d.f[2][j] = 2.0 * dy - h * (tr.k[12][j] + tr.k[0][j]);
             for (row, coefficients) in D.iter().enumerate() {
                 let mut sum = 0.0;
                 for (s, c) in coefficients.iter().enumerate() {
                     sum += c * tr.k[s][j];
                 }
-                f[3 + row][j] = h * sum;
+                d.f[3 + row][j] = h * sum;
             }
         }
-        Dense {
-            u0,
-            f,
-            sigma_h: tr.sigma * h,
-            decaying: tr.decaying,
-            shift: tr.shift,
-        }
+        d
     }
 
-    /// The switching functions at `t + theta h` on the dense output.
-    fn switches_on<S: Switching + ?Sized>(
+    /// Switching function `i` at `t + theta h` on the dense output.
+    fn switch_on<S: Switching + ?Sized>(
         ode: &S,
         t: f64,
         dense: &Dense,
         h: f64,
+        i: usize,
         theta: f64,
-    ) -> [f64; MAX_SWITCHES] {
+    ) -> f64 {
         let n = ode.dim().min(MAX_DIM);
         let mut state = [0.0; MAX_DIM];
         let mut sw = [0.0; MAX_SWITCHES];
         dense.at(theta, &mut state);
         ode.switches(t + theta * h, &state[..n], &mut sw);
-        sw
+        sw[i]
+    }
+
+    /// The narrow feature's coordinate at `t + theta h` on the dense output (infinite: none).
+    fn narrow_on<S: Switching + ?Sized>(ode: &S, t: f64, dense: &Dense, h: f64, theta: f64) -> f64 {
+        let n = ode.dim().min(MAX_DIM);
+        let mut state = [0.0; MAX_DIM];
+        let mut sw = [0.0; MAX_SWITCHES];
+        dense.at(theta, &mut state);
+        ode.switches(t + theta * h, &state[..n], &mut sw);
+        ode.narrow(&sw).map_or(f64::INFINITY, |e| e.r)
     }
 
     /// The factor a step is divided by after a trial with error `err` (Hairer's rule).
@@ -784,11 +703,7 @@ impl Dop853 {
         let mut sw_old = [0.0; MAX_SWITCHES];
         let mut sw_new = [0.0; MAX_SWITCHES];
         let mut sw_kink = [0.0; MAX_SWITCHES];
-        let (mut count, mut sigma) = ode.switches_and_decay(t, &y[..n], &mut sw_old);
-        let trend = ode.decay_follows_trend();
-        // How fast the decay rate changed over the last accepted step (0: not known, or not
-        // to be followed).
-        let mut sigma_slope = 0.0;
+        let mut count = ode.switches(t, &y[..n], &mut sw_old);
         let mut tr = Trial::new();
         let mut retry = Trial::new();
         let mut watch = Watch::default();
@@ -807,12 +722,11 @@ impl Dop853 {
             if last {
                 h = rest;
             }
-            let sigma_mid = (sigma + 0.5 * h * sigma_slope).max(0.0);
-            self.trial(ode, t, y, &k1, h, (sigma, sigma_mid), &mut tr, work);
+            self.trial(ode, t, y, &k1, h, &mut tr, work);
             // The first sign change inside the step, on the dense output, looked for before the
             // error test: a step across a kink fails that test by a wide margin, and halving
             // towards the kink blindly costs several rejections.
-            let (count_new, sigma_new) = ode.switches_and_decay(t + h, &tr.y_new[..n], &mut sw_new);
+            let count_new = ode.switches(t + h, &tr.y_new[..n], &mut sw_new);
             let mut first = None;
             let mut theta_min = 1.0;
             let mut dense = None;
@@ -821,7 +735,7 @@ impl Dop853 {
                     continue;
                 }
                 let d = dense.get_or_insert_with(|| Self::dense(ode, t, y, h, &mut tr, work));
-                let at = |theta: f64| Self::switches_on(ode, t, d, h, theta)[i];
+                let at = |theta: f64| Self::switch_on(ode, t, d, h, i, theta);
                 let located = super::root::first_zero(at, sw_old[i], sw_new[i], 1e-9, 100);
                 if let Some(theta) = located {
                     if theta * h > h_tiny && theta < theta_min {
@@ -834,8 +748,7 @@ impl Dop853 {
             if first.is_some() {
                 // Retake the step to end on the first kink.
                 let h_kink = theta_min * h;
-                let sigma_mid = (sigma + 0.5 * h_kink * sigma_slope).max(0.0);
-                self.trial(ode, t, y, &k1, h_kink, (sigma, sigma_mid), &mut retry, work);
+                self.trial(ode, t, y, &k1, h_kink, &mut retry, work);
                 if retry.err > 1.0 {
                     work.rejected += 1;
                     self.h = h_kink / Self::shrink(retry.err).min(1.0 / SHRINK_MAX);
@@ -855,11 +768,11 @@ impl Dop853 {
                 }
                 continue;
             }
-            let (count_end, sigma_end, sw_end) = if h_taken == h {
-                (count_new, sigma_new, &sw_new)
+            let (count_end, sw_end) = if h_taken == h {
+                (count_new, &sw_new)
             } else {
-                let (c, s) = ode.switches_and_decay(t + h_taken, &tr.y_new[..n], &mut sw_kink);
-                (c, s, &sw_kink)
+                let c = ode.switches(t + h_taken, &tr.y_new[..n], &mut sw_kink);
+                (c, &sw_kink)
             };
             let mut cap = None;
             if let Some(r0) = ode.narrow(&sw_old) {
@@ -868,8 +781,7 @@ impl Dop853 {
                     let d =
                         dense.get_or_insert_with(|| Self::dense(ode, t, y, h_taken, &mut tr, work));
                     let verdict = watch.judge(t, h_taken, h_tiny, r0, r1, |theta| {
-                        let sw = Self::switches_on(ode, t, d, h_taken, theta);
-                        ode.narrow(&sw).map_or(f64::INFINITY, |e| e.r)
+                        Self::narrow_on(ode, t, d, h_taken, theta)
                     });
                     match verdict {
                         Verdict::Retake(h_short) => {
@@ -884,9 +796,8 @@ impl Dop853 {
             work.steps += 1;
             Self::end_derivative(ode, t + h_taken, &mut tr, work);
             if self.stiffness.due() {
-                let h_lambda = Self::h_lambda(&tr, h_taken, n);
                 self.stiffness
-                    .record(h_lambda, tr.sigma * h_taken, t + h_taken);
+                    .record(Self::h_lambda(&tr, h_taken, n), 0.0, t + h_taken);
             }
             let full = first.is_none();
             t = if last && full { t1 } else { t + h_taken };
@@ -894,16 +805,10 @@ impl Dop853 {
             if y[..n].iter().any(|v| !v.is_finite()) {
                 return Err(format!("dop853: the state became non-finite at t = {t}"));
             }
-            k1 = tr.k_end;
+            k1 = tr.k[12];
             let far_side = sw_new;
             sw_old = *sw_end;
-            // A step ended on a kink, where the rate itself has one, says nothing of the next.
-            sigma_slope = if trend && full {
-                (sigma_end - sigma) / h_taken
-            } else {
-                0.0
-            };
-            (count, sigma) = (count_end, sigma_end);
+            count = count_end;
             if let Some(i) = first {
                 // The step ended on the kink of switch i, which the next step must not find
                 // again: where the end landed a hair short of it, take it as crossed.
@@ -927,16 +832,12 @@ impl Dop853 {
     }
 
     /// The step times the Jacobian's size along the difference of the last stage and the
-    /// derivative at the end, which both fall on the step's end (Hairer's stiffness estimate);
-    /// with the integrating factor, that of the equations it leaves to the stages (both stages
-    /// carry the same factor g).
-    #[allow(clippy::needless_range_loop)]
+    /// derivative at the end, which both fall on the step's end (Hairer's stiffness estimate).
     fn h_lambda(tr: &Trial, h: f64, n: usize) -> f64 {
-        let u_new = tr.u_new();
         let (mut num, mut den) = (0.0, 0.0);
         for j in 0..n {
             num += (tr.k[12][j] - tr.k[11][j]).powi(2);
-            den += (u_new[j] - tr.last_argument[j]).powi(2);
+            den += (tr.y_new[j] - tr.last_argument[j]).powi(2);
         }
         if den > 0.0 {
             h * (num / den).sqrt()
@@ -1056,7 +957,7 @@ mod tests {
         Harmonic.rhs(0.0, &y, &mut k1[..2]);
         let mut tr = Trial::new();
         let mut work = Work::default();
-        d.trial(&ode, 0.0, &y, &k1, h, (0.0, 0.0), &mut tr, &mut work);
+        d.trial(&ode, 0.0, &y, &k1, h, &mut tr, &mut work);
         let dense = Dop853::dense(&ode, 0.0, &y, h, &mut tr, &mut work);
         for i in 0..=10 {
             let theta = f64::from(i) / 10.0;
@@ -1088,65 +989,6 @@ mod tests {
                 .unwrap();
             assert!(with.rhs_evaluations < without.rhs_evaluations);
         }
-    }
-
-    /// y' = 1 - lambda y, its decay marked for the integrating factor.
-    struct Relax(f64);
-
-    impl Ode for Relax {
-        fn dim(&self) -> usize {
-            1
-        }
-        fn rhs(&self, _t: f64, y: &[f64], dydt: &mut [f64]) {
-            dydt[0] = 1.0 - self.0 * y[0];
-        }
-    }
-
-    impl Switching for Relax {
-        fn switches(&self, _t: f64, _y: &[f64], _out: &mut [f64; MAX_SWITCHES]) -> usize {
-            0
-        }
-        fn switches_and_decay(
-            &self,
-            _t: f64,
-            _y: &[f64],
-            _out: &mut [f64; MAX_SWITCHES],
-        ) -> (usize, f64) {
-            (0, self.0)
-        }
-        fn decaying(&self) -> &[usize] {
-            &[0]
-        }
-    }
-
-    /// Oracle: the closed form (1 - e^(-lambda t))/lambda. The integrating factor, shifted to
-    /// where the decay leads, takes a steady relaxation (as a steady slip of the bristle)
-    /// exactly at any step it covers whole (lambda h up to 30): here at lambda h = 20, a
-    /// step three times the plain pair's stability bound.
-    #[test]
-    fn the_integrating_factor_takes_a_steady_relaxation_exactly() {
-        let lambda = 1e4;
-        let exact = |t: f64| (1.0 - (-lambda * t).exp()) / lambda;
-        let mut y = [0.0];
-        let mut with = Work::default();
-        let mut d = dop(1e-8);
-        d.h_max = 20.0 / lambda;
-        d.integrate_switched(&Relax(lambda), 0.0, 0.3, &mut y, &mut with)
-            .unwrap();
-        assert!(
-            (y[0] / exact(0.3) - 1.0).abs() < 1e-14,
-            "error {}",
-            y[0] - exact(0.3)
-        );
-        let mut y = [0.0];
-        let mut without = Work::default();
-        dop(1e-8)
-            .integrate(&Relax(lambda), 0.0, 0.3, &mut y, &mut without)
-            .unwrap();
-        assert!(
-            without.steps > 3 * with.steps,
-            "{without:?} against {with:?}"
-        );
     }
 
     /// A stiff relaxation at a loose tolerance: stability holds the step, and the test says so

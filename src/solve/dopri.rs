@@ -68,18 +68,18 @@ pub const MAX_DECAYING: usize = 2;
 /// The components a step integrates with the integrating factor: those of
 /// [`Switching::decaying`] below the dimension, at most [`MAX_DECAYING`] of them.
 #[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Decaying {
+struct Decaying {
     index: [usize; MAX_DECAYING],
     len: usize,
 }
 
 impl Decaying {
-    pub(super) const NONE: Decaying = Decaying {
+    const NONE: Decaying = Decaying {
         index: [0; MAX_DECAYING],
         len: 0,
     };
 
-    pub(super) fn new(components: &[usize], n: usize) -> Self {
+    fn new(components: &[usize], n: usize) -> Self {
         let mut d = Decaying::NONE;
         for &j in components.iter().filter(|&&j| j < n).take(MAX_DECAYING) {
             d.index[d.len] = j;
@@ -88,24 +88,24 @@ impl Decaying {
         d
     }
 
-    pub(super) fn iter(&self) -> impl Iterator<Item = usize> + '_ {
+    fn iter(&self) -> impl Iterator<Item = usize> + '_ {
         self.index[..self.len].iter().copied()
     }
 
-    pub(super) fn is_empty(&self) -> bool {
+    fn is_empty(&self) -> bool {
         self.len == 0
     }
 }
 
 /// The largest decay over one step the integrating factor takes on (e^30 keeps the stage
 /// weights far from overflow); a faster decay is left, in part, to the Runge-Kutta stages.
-pub(super) const MAX_DECAY_PER_STEP: f64 = 30.0;
+const MAX_DECAY_PER_STEP: f64 = 30.0;
 
 /// The least decay over one step the integrating factor is used for. Below it the factor gains
 /// nothing, and the shift c = y + y'/sigma grows without bound as sigma goes to 0 (a step that
 /// starts on the kink of the slip |v|): y - c then loses the digits the tolerance asks for (scene
 /// T, total law at va 12 mm/s: FFx_mean off by up to 1.4e-4 at rtol 1e-8 to 1e-13).
-pub(super) const MIN_DECAY_PER_STEP: f64 = 1e-3;
+const MIN_DECAY_PER_STEP: f64 = 1e-3;
 
 /// No switching functions: plain Dormand-Prince.
 struct Smooth<'a>(&'a dyn Ode);
