@@ -12,14 +12,14 @@
 //! retaken to end on it: no kink is foreseen from the step before, so where kinks come every
 //! few steps (the split law) dopri5 is cheaper.
 
-use super::dopri::{crossed, Switching, MAX_SWITCHES};
+use super::dopri::{crossed, Smooth, Switching, MAX_SWITCHES};
 use super::narrow::{Verdict, Watch};
 use super::stiffness::StiffnessTest;
 use super::{Integrator, Ode, Work, MAX_DIM};
 
 /// The nodes: the twelve stages of a step, the end (where the next step's first stage is
 /// taken) and the three stages only the dense output takes.
-const C: [f64; 16] = [
+pub const C: [f64; 16] = [
     0.0,
     0.05260015195876773,
     0.0789002279381516,
@@ -39,7 +39,7 @@ const C: [f64; 16] = [
 ];
 /// Row s: the coefficients of stages 0 .. s in stage s; row 12 the weights of the
 /// eighth-order solution.
-const A: [[f64; 15]; 16] = [
+pub const A: [[f64; 15]; 16] = [
     [
         0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
     ],
@@ -300,7 +300,7 @@ const A: [[f64; 15]; 16] = [
     ],
 ];
 /// The weights of the fifth-order error estimate.
-const E5: [f64; 12] = [
+pub const E5: [f64; 12] = [
     0.01312004499419488,
     0.0,
     0.0,
@@ -315,7 +315,7 @@ const E5: [f64; 12] = [
     -0.022355307863886294,
 ];
 /// The weights of the third-order error estimate.
-const E3: [f64; 12] = [
+pub const E3: [f64; 12] = [
     -0.18980075407240762,
     0.0,
     0.0,
@@ -515,16 +515,7 @@ impl Dop853 {
         let mut arg = [0.0; MAX_DIM];
         arg[..n].copy_from_slice(&y[..n]);
         for s in 1..12 {
-            for j in 0..coupled {
-                let mut sum = 0.0;
-                for (a, k) in A[s][..s].iter().zip(&tr.k[..s]) {
-                    sum += a * k[j];
-                }
-                arg[j] = y[j] + h * sum;
-            }
-            let (done, rest) = tr.k.split_at_mut(s);
-            debug_assert_eq!(done.len(), s);
-            ode.rhs(t + C[s] * h, &arg[..n], &mut rest[0][..n]);
+            Self::stage(ode, (t, y, h), tr, s, coupled, &mut arg);
         }
         work.rhs_evaluations += 11;
         tr.last_argument = arg;
@@ -554,6 +545,28 @@ impl Dop853 {
         tr.err = if err.is_finite() { err } else { f64::INFINITY };
     }
 
+    /// Stage `s` of the step `h` from `(t, y)`: its argument y + h sum_r a_sr k_r over the first
+    /// `len` states (the others keep what `arg` holds), and the right-hand side there into k[s].
+    fn stage<S: Switching + ?Sized>(
+        ode: &S,
+        (t, y, h): (f64, &[f64], f64),
+        tr: &mut Trial,
+        s: usize,
+        len: usize,
+        arg: &mut [f64; MAX_DIM],
+    ) {
+        let n = ode.dim().min(MAX_DIM);
+        for j in 0..len {
+            let mut sum = 0.0;
+            for (a, k) in A[s][..s].iter().zip(&tr.k[..s]) {
+                sum += a * k[j];
+            }
+            arg[j] = y[j] + h * sum;
+        }
+        let (_, rest) = tr.k.split_at_mut(s);
+        ode.rhs(t + C[s] * h, &arg[..n], &mut rest[0][..n]);
+    }
+
     /// The derivative at the trial's end into k[12] (the next step's first stage), once.
     fn end_derivative<S: Switching + ?Sized>(ode: &S, t_end: f64, tr: &mut Trial, work: &mut Work) {
         if !tr.has_end {
@@ -579,15 +592,7 @@ impl Dop853 {
         Self::end_derivative(ode, t + h, tr, work);
         let mut arg = [0.0; MAX_DIM];
         for s in 13..16 {
-            for j in 0..n {
-                let mut sum = 0.0;
-                for (a, k) in A[s][..s].iter().zip(&tr.k[..s]) {
-                    sum += a * k[j];
-                }
-                arg[j] = y[j] + h * sum;
-            }
-            let (_, rest) = tr.k.split_at_mut(s);
-            ode.rhs(t + C[s] * h, &arg[..n], &mut rest[0][..n]);
+            Self::stage(ode, (t, y, h), tr, s, n, &mut arg);
         }
         work.rhs_evaluations += 3;
         let mut d = Dense {
@@ -611,31 +616,20 @@ impl Dop853 {
         d
     }
 
-    /// Switching function `i` at `t + theta h` on the dense output.
-    fn switch_on<S: Switching + ?Sized>(
+    /// The switching functions at `t + theta h` on the dense output.
+    fn switches_on<S: Switching + ?Sized>(
         ode: &S,
         t: f64,
         dense: &Dense,
         h: f64,
-        i: usize,
         theta: f64,
-    ) -> f64 {
+    ) -> [f64; MAX_SWITCHES] {
         let n = ode.dim().min(MAX_DIM);
         let mut state = [0.0; MAX_DIM];
         let mut sw = [0.0; MAX_SWITCHES];
         dense.at(theta, &mut state);
         ode.switches(t + theta * h, &state[..n], &mut sw);
-        sw[i]
-    }
-
-    /// The narrow feature's coordinate at `t + theta h` on the dense output (infinite: none).
-    fn narrow_on<S: Switching + ?Sized>(ode: &S, t: f64, dense: &Dense, h: f64, theta: f64) -> f64 {
-        let n = ode.dim().min(MAX_DIM);
-        let mut state = [0.0; MAX_DIM];
-        let mut sw = [0.0; MAX_SWITCHES];
-        dense.at(theta, &mut state);
-        ode.switches(t + theta * h, &state[..n], &mut sw);
-        ode.narrow(&sw).map_or(f64::INFINITY, |e| e.r)
+        sw
     }
 
     /// The factor a step is divided by after a trial with error `err` (Hairer's rule).
@@ -735,7 +729,7 @@ impl Dop853 {
                     continue;
                 }
                 let d = dense.get_or_insert_with(|| Self::dense(ode, t, y, h, &mut tr, work));
-                let at = |theta: f64| Self::switch_on(ode, t, d, h, i, theta);
+                let at = |theta: f64| Self::switches_on(ode, t, d, h, theta)[i];
                 let located = super::root::first_zero(at, sw_old[i], sw_new[i], 1e-9, 100);
                 if let Some(theta) = located {
                     if theta * h > h_tiny && theta < theta_min {
@@ -781,7 +775,8 @@ impl Dop853 {
                     let d =
                         dense.get_or_insert_with(|| Self::dense(ode, t, y, h_taken, &mut tr, work));
                     let verdict = watch.judge(t, h_taken, h_tiny, r0, r1, |theta| {
-                        Self::narrow_on(ode, t, d, h_taken, theta)
+                        let sw = Self::switches_on(ode, t, d, h_taken, theta);
+                        ode.narrow(&sw).map_or(f64::INFINITY, |e| e.r)
                     });
                     match verdict {
                         Verdict::Retake(h_short) => {
@@ -847,27 +842,6 @@ impl Dop853 {
     }
 }
 
-/// No switching functions: plain Dormand-Prince 8(5,3).
-struct Smooth<'a>(&'a dyn Ode);
-
-impl Ode for Smooth<'_> {
-    fn dim(&self) -> usize {
-        self.0.dim()
-    }
-    fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
-        self.0.rhs(t, y, dydt);
-    }
-    fn coupled(&self) -> usize {
-        self.0.coupled()
-    }
-}
-
-impl Switching for Smooth<'_> {
-    fn switches(&self, _t: f64, _y: &[f64], _out: &mut [f64; MAX_SWITCHES]) -> usize {
-        0
-    }
-}
-
 impl Integrator for Dop853 {
     fn integrate(
         &mut self,
@@ -885,10 +859,7 @@ impl Integrator for Dop853 {
 mod tests {
     use super::*;
     use crate::solve::dopri::Dopri5;
-    use crate::solve::test_odes::{AbsCos, Harmonic, Scalar};
-
-    /// y' = -2 t y, y(0) = 1: y = exp(-t^2).
-    const GAUSS: Scalar = Scalar(|t, y| -2.0 * t * y);
+    use crate::solve::test_odes::{gauss_error, AbsCos, Harmonic, Scalar, GAUSS};
 
     fn dop(rtol: f64) -> Dop853 {
         Dop853::new(rtol, [rtol; MAX_DIM], f64::INFINITY)
@@ -898,11 +869,7 @@ mod tests {
     #[test]
     fn meets_the_tolerance_on_a_smooth_problem() {
         for rtol in [1e-4, 1e-7, 1e-10] {
-            let mut y = [1.0];
-            dop(rtol)
-                .integrate(&GAUSS, 0.0, 3.0, &mut y, &mut Work::default())
-                .unwrap();
-            let err = (y[0] - (-9.0f64).exp()).abs();
+            let err = gauss_error(&mut dop(rtol));
             assert!(err < 50.0 * rtol, "rtol {rtol}: error {err}");
         }
     }

@@ -108,7 +108,7 @@ const MAX_DECAY_PER_STEP: f64 = 30.0;
 const MIN_DECAY_PER_STEP: f64 = 1e-3;
 
 /// No switching functions: plain Dormand-Prince.
-struct Smooth<'a>(&'a dyn Ode);
+pub(super) struct Smooth<'a>(pub(super) &'a dyn Ode);
 
 impl Ode for Smooth<'_> {
     fn dim(&self) -> usize {
@@ -1056,10 +1056,8 @@ mod tests {
     use super::*;
     use crate::solve::narrow::Narrow;
 
-    use crate::solve::test_odes::{AbsCos, Harmonic, Scalar};
+    use crate::solve::test_odes::{gauss_error, AbsCos, Harmonic, GAUSS};
 
-    /// y' = -2 t y, y(0) = 1: y = exp(-t^2).
-    const GAUSS: Scalar = Scalar(|t, y| -2.0 * t * y);
     /// y' = |cos t|: y = integral of |cos|.
     const ABS_COS: AbsCos = AbsCos { decay: 0.0 };
 
@@ -1255,11 +1253,7 @@ mod tests {
     #[test]
     fn meets_the_tolerance_on_a_smooth_problem() {
         for rtol in [1e-4, 1e-7, 1e-10] {
-            let mut y = [1.0];
-            dopri(rtol)
-                .integrate(&GAUSS, 0.0, 3.0, &mut y, &mut Work::default())
-                .unwrap();
-            let err = (y[0] - (-9.0f64).exp()).abs();
+            let err = gauss_error(&mut dopri(rtol));
             assert!(err < 50.0 * rtol, "rtol {rtol}: error {err}");
         }
     }

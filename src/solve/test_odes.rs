@@ -1,10 +1,22 @@
 //! Test problems the solvers' tests share, each with its solution in closed form.
 
 use super::dopri::{Switching, MAX_SWITCHES};
-use super::Ode;
+use super::{Integrator, Ode, Work};
 
 /// A scalar equation y' = f(t, y).
 pub struct Scalar(pub fn(f64, f64) -> f64);
+
+/// y' = -2 t y, y(0) = 1: y = exp(-t^2).
+pub const GAUSS: Scalar = Scalar(|t, y| -2.0 * t * y);
+
+/// The error of `integrator` on [`GAUSS`] over [0, 3], against the closed form.
+pub fn gauss_error(integrator: &mut dyn Integrator) -> f64 {
+    let mut y = [1.0];
+    integrator
+        .integrate(&GAUSS, 0.0, 3.0, &mut y, &mut Work::default())
+        .unwrap();
+    (y[0] - (-9.0f64).exp()).abs()
+}
 
 impl Ode for Scalar {
     fn dim(&self) -> usize {
