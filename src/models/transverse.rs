@@ -771,7 +771,11 @@ impl Transverse {
     /// The energy the contact has dissipated since the start: the work done on it minus the
     /// energy kt s^2/2 stored in its deflection.
     pub fn dissipated_energy(&self) -> f64 {
-        let s = self.forces().3;
+        self.dissipated_with(self.forces().3)
+    }
+
+    /// [`Transverse::dissipated_energy`] with the deflection s already at hand.
+    fn dissipated_with(&self, s: f64) -> f64 {
         self.y[W] - 0.5 * self.p.law.kt * s * s
     }
 
@@ -898,7 +902,7 @@ impl Simulation for Transverse {
             // the looser tolerance than scene L's.
             let kt = self.p.law.kt;
             require_passive(
-                (self.dissipated_energy(), 0.5 * kt * s * s),
+                (self.dissipated_with(s), 0.5 * kt * s * s),
                 1e-3,
                 self.solver
                     .rtol()
@@ -926,7 +930,7 @@ impl Simulation for Transverse {
         values.set(vr::Y, self.y[Y]);
         values.set(vr::S, s);
         values.set(vr::BETA, beta);
-        values.set(vr::W_DISS, self.dissipated_energy());
+        values.set(vr::W_DISS, self.dissipated_with(s));
     }
 
     fn time(&self) -> f64 {
