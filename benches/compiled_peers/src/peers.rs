@@ -1,7 +1,7 @@
 //! The compiled peers on a [`Spec`]: SUNDIALS CVODE (BDF, Adams), diffsol (bdf, esdirk34) and
 //! ode_solvers (Dopri5, Dop853), each as its documentation sets it up, and a textbook Dop853
-//! ([`crate::dop853`]), with the same relative
-//! tolerance and the same absolute tolerance per state as ours.
+//! ([`crate::dop853`]), with the same relative tolerance and the same absolute tolerance per
+//! state as ours.
 
 use crate::cvode::{self, Cvode, Stop};
 use crate::problem::{Mode, Problem, Reading, Spec, Switch};
