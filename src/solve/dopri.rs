@@ -357,7 +357,10 @@ impl Dense {
             } else {
                 0.5 * (lo + hi)
             };
-            if (next - x).abs() <= 1e-14 {
+            // The value moves with the square of the position's error, so a position to 1e-9
+            // of the step gives the value to round-off; round-off keeps Newton's steps from
+            // falling much below that.
+            if (next - x).abs() <= 1e-9 {
                 x = next;
                 break;
             }
@@ -833,10 +836,18 @@ impl Dopri5 {
             let mut first = None;
             let mut dense = None;
             let mut hit = false;
-            let mut all_smooth = true;
+            // A step that crossed only kinks where the right-hand side stays C1 and passed its
+            // error test stands where it stops there (it stops a little past them): where they
+            // lie is not needed.
+            let across = stop.is_some()
+                && tr.err <= 1.0
+                && (0..count).all(|i| !crossed(sw_old[i], sw_new[i]) || ode.smooth_across(i));
             for i in 0..count {
                 if crossed(sw_old[i], sw_new[i]) {
-                    all_smooth &= ode.smooth_across(i);
+                    if across {
+                        first.get_or_insert(i);
+                        continue;
+                    }
                     let d = dense.get_or_insert_with(|| Dense::new(n, y, &tr, h));
                     if predicted == Some(i) {
                         // The end placed on a foreseen kink landed just past it (no sign change
@@ -859,10 +870,7 @@ impl Dopri5 {
                 first = predicted;
             }
             let mut h_taken = h;
-            // A step that crossed only kinks where the right-hand side stays C1 and passed its
-            // error test stands where it stops there: the stop lands a little past them.
-            let across = stop.is_some() && all_smooth && theta_min < 1.0 && tr.err <= 1.0;
-            if theta_min < 1.0 && !across {
+            if theta_min < 1.0 {
                 // Retake the step to end on the first kink; a shorter step from the same point
                 // passes the error test in all but freak cases, which the controller then handles.
                 let h_kink = theta_min * h;

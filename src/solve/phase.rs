@@ -1,7 +1,8 @@
-//! The phase of a periodic forcing in turns ([`turns`]), and cos(2 pi x) for a phase `x` in turns,
-//! for periodic forcing that a right-hand side evaluates at every stage. libm's cos plus the
-//! reduction `fract` cost a large part of scene T's right-hand side (docs/performance.md,
-//! "Measurements behind the code"); reducing in turns is exact, which leaves two short polynomials.
+//! The phase of a periodic forcing in turns ([`turns`]), and cos(2 pi x) and sin(2 pi x) for a
+//! phase `x` in turns, for periodic forcing that a right-hand side evaluates at every stage, and
+//! for closed forms evaluated as often. libm's cos plus the reduction `fract` cost a large part of
+//! scene T's right-hand side (docs/performance.md, "Measurements behind the code"); reducing in
+//! turns is exact, which leaves two short polynomials.
 //!
 //! Both polynomials are evaluated every time, by Estrin's scheme, and the quadrant picks one
 //! without a branch: Horner's chain of eight dependent products, and a quadrant branch that the
@@ -57,27 +58,55 @@ fn cos_quarter(a2: f64) -> f64 {
     1.0 + a2 * estrin(&C, a2)
 }
 
+/// Below this |x| the integer part of x is exact in an i64 and x minus it is exact: the whole
+/// error of [`cos_turns`] and [`sin_cos_turns`] is that of the short polynomials.
+const EXACT_REDUCTION: f64 = 4.5e15;
+
+/// A phase `x` in turns (|x| below [`EXACT_REDUCTION`]) as the nearest whole quarter turn q and
+/// the angle a left over, |a| <= pi/4: 2 pi x = q pi/2 + a. Returns (q, a, a^2).
+#[inline(always)]
+fn quarters(x: f64) -> (i64, f64, f64) {
+    let r = x - (x as i64) as f64;
+    // u + 4.5 > 0, so truncation is floor.
+    let u = 4.0 * r;
+    let q = (u + 4.5) as i64 - 4;
+    let a = (u - q as f64) * FRAC_PI_2;
+    (q, a, a * a)
+}
+
+/// `v` with its sign flipped where bit 1 (the value 2) of `q` is set.
+#[inline(always)]
+fn flipped(v: f64, q: i64) -> f64 {
+    f64::from_bits(v.to_bits() ^ (((q & 2) as u64) << 62))
+}
+
 /// cos(2 pi x), to about 2e-16 absolute. Always inlined: a call and its register spills cost
 /// as much as the reduction.
 #[inline(always)]
 pub fn cos_turns(x: f64) -> f64 {
-    // Below 2^52 the integer part is exact in an i64 and x minus it is exact: the whole error is
-    // that of the short polynomial.
-    if x.is_nan() || x.abs() >= 4.5e15 {
+    if x.is_nan() || x.abs() >= EXACT_REDUCTION {
         return (std::f64::consts::TAU * x.fract()).cos();
     }
-    let r = x - (x as i64) as f64;
-    // Quarter turns, and the nearest whole quarter q (u + 4.5 > 0, so truncation is floor).
-    let u = 4.0 * r;
-    let q = (u + 4.5) as i64 - 4;
-    let a = (u - q as f64) * FRAC_PI_2;
-    let a2 = a * a;
+    let (q, a, a2) = quarters(x);
     let (c, s) = (cos_quarter(a2), sin_quarter(a, a2));
-    // Quadrants 0..3 of q mod 4: cos, -sin, -cos, sin.
-    let v = if q & 1 == 0 { c } else { s };
-    // The sign bit flips for quadrants 1 and 2, where (q + 1) & 2 is set.
-    let flip = (((q + 1) & 2) as u64) << 62;
-    f64::from_bits(v.to_bits() ^ flip)
+    // Quadrants 0..3 of q mod 4: cos, -sin, -cos, sin; the sign flips for quadrants 1 and 2,
+    // where (q + 1) & 2 is set.
+    flipped(if q & 1 == 0 { c } else { s }, q + 1)
+}
+
+/// (sin(2 pi x), cos(2 pi x)) from one reduction, each to about 2e-16 absolute (sin near 0 to
+/// about an ulp of itself).
+#[inline(always)]
+pub fn sin_cos_turns(x: f64) -> (f64, f64) {
+    if x.is_nan() || x.abs() >= EXACT_REDUCTION {
+        return (std::f64::consts::TAU * x.fract()).sin_cos();
+    }
+    let (q, a, a2) = quarters(x);
+    let (c, s) = (cos_quarter(a2), sin_quarter(a, a2));
+    // Quadrants 0..3 of q mod 4: sin is sin, cos, -sin, -cos (flipped where q & 2 is set), cos
+    // as in `cos_turns`.
+    let (sin, cos) = if q & 1 == 0 { (s, c) } else { (c, s) };
+    (flipped(sin, q), flipped(cos, q + 1))
 }
 
 /// The fraction of a turn of `t f` in [0, 1), to the rounding of one sum: the product is split
@@ -92,7 +121,7 @@ pub fn turns(t: f64, f: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{cos_turns, turns};
+    use super::{cos_turns, sin_cos_turns, turns};
 
     /// Oracle: exact rational arithmetic. t = k/f + 1/8 period is an exact binary fraction
     /// whatever k, so its phase is 1/8 turn; t f rounded in one product loses it at large k.
@@ -154,5 +183,31 @@ mod tests {
             );
         }
         assert!(worst < 1e-15, "{worst}");
+    }
+
+    /// Oracle: libm's sin and cos on the same phase: a grid over many turns, both signs, every
+    /// quadrant's edges, tiny phases (sin to a relative 1e-15 there) and NaN.
+    #[test]
+    fn sin_cos_agrees_with_libm() {
+        let phases = (-20_000..20_000)
+            .map(|i| f64::from(i) * 0.000_731_3 + 1e-3)
+            .chain((-8..=8).map(|i| f64::from(i) * 0.125))
+            .chain([3000.125, 1e9 + 0.3, -7.75, 1e17]);
+        for x in phases {
+            let (sin, cos) = sin_cos_turns(x);
+            let (s, c) = (std::f64::consts::TAU * x.fract()).sin_cos();
+            assert!(
+                (sin - s).abs() < 1e-15 && (cos - c).abs() < 1e-15,
+                "{x}: {sin} {cos}"
+            );
+            assert_eq!(cos.to_bits(), cos_turns(x).to_bits(), "{x}");
+        }
+        for x in [1e-300, 3e-12, -2e-9] {
+            let (sin, _) = sin_cos_turns(x);
+            let s = (std::f64::consts::TAU * x).sin();
+            assert!((sin / s - 1.0).abs() < 1e-15, "{x}: {sin} {s}");
+        }
+        let (sin, cos) = sin_cos_turns(f64::NAN);
+        assert!(sin.is_nan() && cos.is_nan());
     }
 }

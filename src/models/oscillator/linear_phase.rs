@@ -10,6 +10,8 @@
 //! back to the edge ([`LinearPhase::entry`]); inside the band dopri5 integrates.
 
 use super::Forced;
+use crate::solve::phase::sin_cos_turns;
+use std::f64::consts::TAU;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LinearPhase {
@@ -17,14 +19,19 @@ pub struct LinearPhase {
     /// The free motion's start and its y0.
     x0: f64,
     y0: f64,
-    /// Damping rate a = c/(2m) and kappa = k/m - a^2.
+    /// Damping rate a = c/(2m), kappa = k/m - a^2 and sqrt(|kappa|).
     a: f64,
     kappa: f64,
+    root: f64,
     /// The particular solution's sine and cosine amplitudes and constant.
     sine: f64,
     cosine: f64,
     constant: f64,
     w: f64,
+    /// The forcing's and the free motion's frequencies in turns per unit time (w and sqrt(kappa)
+    /// over 2 pi): both sines and cosines from one reduction each, not libm's two.
+    w_turns: f64,
+    root_turns: f64,
     /// The forcing `P sin(w t) + q` and the plant, for the acceleration.
     p: f64,
     q: f64,
@@ -56,16 +63,21 @@ impl LinearPhase {
             (p * detuning / det, -p * c * w / det)
         };
         let a = c / (2.0 * m);
+        let kappa = k / m - a * a;
+        let root = kappa.abs().sqrt();
         let mut phase = LinearPhase {
             t0,
             x0: 0.0,
             y0: 0.0,
             a,
-            kappa: k / m - a * a,
+            kappa,
+            root,
             sine,
             cosine,
             constant: q / k,
             w,
+            w_turns: w / TAU,
+            root_turns: root / TAU,
             p,
             q,
             plant: *plant,
@@ -78,7 +90,7 @@ impl LinearPhase {
 
     /// The particular solution's (u, u') and the forcing's sine at t.
     fn particular(&self, t: f64) -> (f64, f64, f64) {
-        let (sin, cos) = (self.w * t).sin_cos();
+        let (sin, cos) = sin_cos_turns(self.w_turns * t);
         (
             self.sine * sin + self.cosine * cos + self.constant,
             self.w * (self.sine * cos - self.cosine * sin),
@@ -90,13 +102,12 @@ impl LinearPhase {
     fn free(&self, tau: f64) -> (f64, f64) {
         let kappa = self.kappa;
         if kappa > 0.0 {
-            let omega = kappa.sqrt();
             let decay = (-self.a * tau).exp();
-            let (sin, cos) = (omega * tau).sin_cos();
-            (decay * cos, decay * sin / omega)
+            let (sin, cos) = sin_cos_turns(self.root_turns * tau);
+            (decay * cos, decay * sin / self.root)
         } else if kappa < 0.0 {
             // Written with the two exponentials, which neither overflow: beta < a when k > 0.
-            let beta = (-kappa).sqrt();
+            let beta = self.root;
             let slow = ((beta - self.a) * tau).exp();
             let fast = (-(beta + self.a) * tau).exp();
             (0.5 * (slow + fast), 0.5 * (slow - fast) / beta)
