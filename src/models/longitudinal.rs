@@ -799,7 +799,7 @@ impl Simulation for Longitudinal {
             return Some(notice);
         }
         let t = self.solver.adaptive_mut()?.stiff_since()?;
-        Some(super::stiff_warning(t, "radau5 or exponential"))
+        Some(super::stiff_warning(t, "dopri5", "radau5 or exponential"))
     }
 
     fn reading_period(&self) -> Option<(f64, f64)> {

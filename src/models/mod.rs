@@ -78,11 +78,11 @@ pub trait Simulation: Send {
     }
 }
 
-/// The warning of a simulation whose dopri5 found the problem stiff from `t` on
+/// The warning of a simulation whose explicit `solver` found the problem stiff from `t` on
 /// ([`crate::solve::stiffness`]); `instead` names the solvers to use.
-fn stiff_warning(t: f64, instead: &str) -> String {
+fn stiff_warning(t: f64, solver: &str, instead: &str) -> String {
     format!(
-        "solver dopri5 found the problem stiff from t = {t:e} s on: its steps are held by its stability, not by the tolerance, so the run is slow (though accurate); {instead} takes far fewer steps here"
+        "solver {solver} found the problem stiff from t = {t:e} s on: its steps are held by its stability, not by the tolerance, so the run is slow (though accurate); {instead} takes far fewer steps here"
     )
 }
 

@@ -859,8 +859,12 @@ impl Simulation for Oscillator {
         let Core::Regularized(_, solver) = &mut self.core else {
             return None;
         };
+        let name = match solver {
+            Solver::Piecewise(_) => "piecewise (its dopri5 inside the band)",
+            _ => "dopri5",
+        };
         let t = solver.adaptive_mut()?.stiff_since()?;
-        Some(super::stiff_warning(t, "radau5"))
+        Some(super::stiff_warning(t, name, "radau5"))
     }
 
     fn reading_period(&self) -> Option<(f64, f64)> {

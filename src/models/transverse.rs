@@ -941,12 +941,12 @@ impl Simulation for Transverse {
         if let Some(notice) = self.notice.take() {
             return Some(notice);
         }
-        let t = match &mut self.solver {
-            Solver::Adaptive(a) => a.stiff_since(),
-            Solver::Dop853(d) => d.stiff_since(),
-            Solver::Rk4 { .. } | Solver::TwoPhase(_) | Solver::Exponential(_) => None,
-        }?;
-        Some(super::stiff_warning(t, "radau5 or exponential"))
+        let (t, name) = match &mut self.solver {
+            Solver::Adaptive(a) => (a.stiff_since(), "dopri5"),
+            Solver::Dop853(d) => (d.stiff_since(), "dop853"),
+            Solver::Rk4 { .. } | Solver::TwoPhase(_) | Solver::Exponential(_) => (None, ""),
+        };
+        Some(super::stiff_warning(t?, name, "radau5 or exponential"))
     }
 
     fn reading_period(&self) -> Option<(f64, f64)> {

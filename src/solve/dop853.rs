@@ -791,8 +791,11 @@ impl Dop853 {
             work.steps += 1;
             Self::end_derivative(ode, t + h_taken, &mut tr, work);
             if self.stiffness.due() {
-                self.stiffness
-                    .record(Self::h_lambda(&tr, h_taken, n), 0.0, t + h_taken);
+                self.stiffness.record(
+                    Self::h_lambda(&tr, h_taken, ode.coupled()),
+                    0.0,
+                    t + h_taken,
+                );
             }
             let full = first.is_none();
             t = if last && full { t1 } else { t + h_taken };
@@ -827,10 +830,13 @@ impl Dop853 {
     }
 
     /// The step times the Jacobian's size along the difference of the last stage and the
-    /// derivative at the end, which both fall on the step's end (Hairer's stiffness estimate).
-    fn h_lambda(tr: &Trial, h: f64, n: usize) -> f64 {
+    /// derivative at the end, which both fall on the step's end (Hairer's stiffness estimate),
+    /// over the `coupled` states: the last stage's argument carries no quadrature (the stages
+    /// leave them at the step's start), and a quadrature is no part of the Jacobian the
+    /// stability bound is about.
+    fn h_lambda(tr: &Trial, h: f64, coupled: usize) -> f64 {
         let (mut num, mut den) = (0.0, 0.0);
-        for j in 0..n {
+        for j in 0..coupled {
             num += (tr.k[12][j] - tr.k[11][j]).powi(2);
             den += (tr.y_new[j] - tr.last_argument[j]).powi(2);
         }

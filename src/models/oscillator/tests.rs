@@ -702,3 +702,27 @@ fn piecewise_meets_the_tolerance_from_fewer_evaluations() {
     assert_eq!(a.state().u.to_bits(), b.state().u.to_bits());
     assert_eq!(a.amplitude().to_bits(), b.amplitude().to_bits());
 }
+
+/// Oracle: Hairer's stiffness test. At D = 1e-6 the law's slope h/D is 1.6e6, so inside the
+/// band dopri5's steps are held by its stability: the warning says so, naming the solver the
+/// user chose (`piecewise`, whose dopri5 it is), and at the paper's D = 0.8 nothing is said.
+#[test]
+fn piecewise_on_a_narrow_band_says_it_is_stiff() {
+    for (d, stiff) in [(1e-6, true), (0.8, false)] {
+        let mut v = with_solver("trigonometric", "piecewise");
+        v.set(vr::D, d);
+        let mut sim = Oscillator::new(&v, 0.0).unwrap();
+        let mut warning = None;
+        for _ in 0..16 {
+            sim.step_logged(TAU / 4.0, 0.0, None).unwrap();
+            warning = warning.or(sim.take_warning());
+        }
+        assert_eq!(warning.is_some(), stiff, "D {d}: {warning:?}");
+        if let Some(warning) = warning {
+            assert!(
+                warning.starts_with("solver piecewise (its dopri5"),
+                "{warning}"
+            );
+        }
+    }
+}
