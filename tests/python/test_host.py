@@ -52,9 +52,14 @@ def wine_environment():
 
 
 def run_host(command, directory, *extra):
-    done = subprocess.run([*command, str(directory), *extra], capture_output=True, text=True, timeout=600,
-                          env=wine_environment())
-    return done.returncode, done.stdout, done.stderr
+    """The host's exit status, standard output and standard error. Both go to files, not pipes:
+    wine's background processes inherit a pipe and hold it open for seconds after the host has
+    exited, and reading a pipe waits for them."""
+    out, err = directory / "host.out", directory / "host.err"
+    with open(out, "w") as stdout, open(err, "w") as stderr:
+        status = subprocess.run([*command, str(directory), *extra], stdin=subprocess.DEVNULL, stdout=stdout,
+                                stderr=stderr, timeout=600, env=wine_environment()).returncode
+    return status, out.read_text(), err.read_text()
 
 
 def read_csv(text):
