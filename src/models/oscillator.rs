@@ -492,7 +492,7 @@ impl Oscillator {
                         equations.require_rk4_stable(t1 - t0)?;
                     }
                     let piecewise = matches!(solver, Solver::Piecewise(_));
-                    if let Solver::Piecewise(Adaptive::Dopri5(dopri5)) = solver {
+                    if let Solver::Piecewise(dopri5) = solver {
                         close_to_edge(equations, dopri5, &mut self.state, t_end, &mut self.work);
                     }
                     if piecewise && linear_phase(equations, &mut self.state, t_end, &mut self.work)
@@ -506,7 +506,7 @@ impl Oscillator {
                     let mut y = start;
                     let t1 = match solver {
                         // Inside the band, up to where u' leaves it.
-                        Solver::Piecewise(Adaptive::Dopri5(dopri5)) => dopri5.integrate_to_kink(
+                        Solver::Piecewise(dopri5) => dopri5.integrate_to_kink(
                             &*equations,
                             (t0, t1),
                             &mut y,
@@ -863,7 +863,7 @@ impl Simulation for Oscillator {
             Solver::Piecewise(_) => "piecewise (its dopri5 inside the band)",
             _ => "dopri5",
         };
-        let t = solver.adaptive_mut()?.stiff_since()?;
+        let t = solver.stiff_since()?;
         Some(super::stiff_warning(t, name, "radau5"))
     }
 
@@ -874,7 +874,7 @@ impl Simulation for Oscillator {
 
     fn save_into(&self, out: &mut Vec<f64>) {
         let step_hint = match &self.core {
-            Core::Regularized(_, solver) => solver.adaptive().map_or(0.0, Adaptive::step_hint),
+            Core::Regularized(_, solver) => solver.step_hint(),
             Core::Exact(_) => 0.0,
         };
         out.clear();
@@ -942,9 +942,7 @@ impl Simulation for Oscillator {
                 self.amplitude.running = state[6];
                 self.amplitude.last = state[7];
                 if let Core::Regularized(_, solver) = &mut self.core {
-                    if let Some(a) = solver.adaptive_mut() {
-                        a.set_step_hint(state[8]);
-                    }
+                    solver.set_step_hint(state[8]);
                     if let Solver::Adaptive(Adaptive::Radau5(radau)) = solver {
                         radau.h_proposed = proposed;
                     }

@@ -17,7 +17,7 @@ pub enum Solver {
     Adaptive(Adaptive),
     Rk4(Rk4),
     /// dopri5 inside the band, which the closed form outside it leaves to.
-    Piecewise(Adaptive),
+    Piecewise(Dopri5),
 }
 
 impl Solver {
@@ -29,11 +29,11 @@ impl Solver {
             OscillatorSolver::Dopri5 | OscillatorSolver::Piecewise => {
                 let mut atols = [atol; MAX_DIM];
                 atols[2] = f64::INFINITY;
-                let dopri5 = Adaptive::Dopri5(Dopri5::new(rtol, atols, h_max));
+                let dopri5 = Dopri5::new(rtol, atols, h_max);
                 if name == OscillatorSolver::Piecewise {
                     Solver::Piecewise(dopri5)
                 } else {
-                    Solver::Adaptive(dopri5)
+                    Solver::Adaptive(Adaptive::Dopri5(dopri5))
                 }
             }
             OscillatorSolver::Rk4 => Solver::Rk4(Rk4 { h_max }),
@@ -48,26 +48,34 @@ impl Solver {
     pub fn atol(&self) -> f64 {
         match self {
             Solver::Adaptive(Adaptive::Radau5(r)) => r.atol,
-            Solver::Adaptive(Adaptive::Dopri5(d)) | Solver::Piecewise(Adaptive::Dopri5(d)) => {
-                d.atol[0]
-            }
-            Solver::Piecewise(Adaptive::Radau5(r)) => r.atol,
+            Solver::Adaptive(Adaptive::Dopri5(d)) | Solver::Piecewise(d) => d.atol[0],
             // The turning-point search stops at this resolution of u'.
             Solver::Rk4(_) => 1e-12,
         }
     }
 
-    /// The adaptive solver, if it is one.
-    pub fn adaptive(&self) -> Option<&Adaptive> {
+    /// The step an adaptive solver would try next (part of a saved FMU state); 0 for rk4.
+    pub fn step_hint(&self) -> f64 {
         match self {
-            Solver::Adaptive(a) | Solver::Piecewise(a) => Some(a),
-            Solver::Rk4(_) => None,
+            Solver::Adaptive(a) => a.step_hint(),
+            Solver::Piecewise(d) => d.h,
+            Solver::Rk4(_) => 0.0,
         }
     }
 
-    pub fn adaptive_mut(&mut self) -> Option<&mut Adaptive> {
+    pub fn set_step_hint(&mut self, h: f64) {
         match self {
-            Solver::Adaptive(a) | Solver::Piecewise(a) => Some(a),
+            Solver::Adaptive(a) => a.set_step_hint(h),
+            Solver::Piecewise(d) => d.h = h,
+            Solver::Rk4(_) => {}
+        }
+    }
+
+    /// Where dopri5 found the problem stiff, once; radau5 and rk4 never say.
+    pub fn stiff_since(&mut self) -> Option<f64> {
+        match self {
+            Solver::Adaptive(a) => a.stiff_since(),
+            Solver::Piecewise(d) => d.stiff_since(),
             Solver::Rk4(_) => None,
         }
     }
@@ -91,9 +99,8 @@ impl Solver {
                     last.h = 0.0;
                 }
                 match solver {
-                    Solver::Adaptive(a) | Solver::Piecewise(a) => {
-                        a.integrate_switched(equations, t0, t1, y, work)
-                    }
+                    Solver::Adaptive(a) => a.integrate_switched(equations, t0, t1, y, work),
+                    Solver::Piecewise(d) => d.integrate_switched(equations, t0, t1, y, work),
                     Solver::Rk4(r) => r.integrate(equations, t0, t1, y, work),
                 }
             }
