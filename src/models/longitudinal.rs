@@ -6,11 +6,11 @@
 //! (|vr| has a kink there, and Coulomb friction jumps) and at period boundaries. The default
 //! `exponential` solver also cuts them at 1/n of a period and freezes the velocity at each
 //! sub-step's midpoint: a second-order scheme whose bristle update is exact and stable at any
-//! stiffness. The general solvers ([`ode`]) integrate z with the force integral and the work as
+//! stiffness. The general solvers (`ode`) integrate z with the force integral and the work as
 //! further states, which a trimmed model drops when their outputs are hidden
 //! ([`Longitudinal::ode_dim`]). A Dahl bristle with alpha < 1 saturates after a finite sliding
 //! distance, where its rate is not Lipschitz: they stop there and hold it, in closed form
-//! ([`Longitudinal::saturation`]).
+//! (`Longitudinal::saturation`).
 //!
 //! As a part of a drive system the velocity and the normal force can be inputs, each held over a
 //! communication step or moving linearly at the derivative the master sets for it

@@ -10,13 +10,13 @@
 //!
 //! `u_amplitude` is max |u| over the last complete forcing period `2 pi/w`, counted from the
 //! start time. The exact core meets every extreme of u as an event; the regularised core finds
-//! an extreme inside a sub-step by re-integrating to where u' = 0 ([`turning_point`]), or, with
-//! `piecewise` (the linear motion outside H's band in closed form, [`linear_phase`]), reads it
+//! an extreme inside a sub-step by re-integrating to where u' = 0 (`turning_point`), or, with
+//! `piecewise` (the linear motion outside H's band in closed form, `linear_phase`), reads it
 //! off the dense output of dopri5's step (smooth inside the band, whose edges end steps).
 //!
 //! With the force prescribed and radau5, a communication step of at most a quarter of the step
 //! the solver proposes takes that step past the communication point and reads the state there
-//! from the step's polynomial; the calls that follow inside the step read it too ([`Ahead`]).
+//! from the step's polynomial; the calls that follow inside the step read it too (`Ahead`).
 
 pub mod exact;
 mod linear_phase;

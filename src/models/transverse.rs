@@ -6,12 +6,12 @@
 //! digits to `vd t - x` in long runs), `q`, the integral of FFx since the last sub-step
 //! boundary, which feeds [`PeriodMean`], and `w`, the work done on the contact since the start
 //! (its power is FF e.(v_body - v_M) = FF (v1 + v2)), which gives the dissipated energy. The
-//! planar part comes last so a simulation without vibration ([`axial`]) integrates only the first
+//! planar part comes last so a simulation without vibration (`axial`) integrates only the first
 //! five or six states, the others staying 0.
 //! Sub-steps end on communication points and vibration period boundaries (those only when
 //! FFx_mean is read, [`Trim`]); the continuous-time
 //! solvers integrate the continuous-time ODE, `two_phase` runs the paper's own scheme on the same
-//! state, `exponential` ([`exponential`]) the exact bristle update around a midpoint step of the
+//! state, `exponential` (its own module) the exact bristle update around a midpoint step of the
 //! body, for stiff contacts.
 
 mod axial;
@@ -453,7 +453,7 @@ pub struct Transverse {
 /// "Measurements behind the code").
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Trim {
-    /// No vibration reaches the contact (va or eta fixed at 0): the 1D equations of [`axial`].
+    /// No vibration reaches the contact (va or eta fixed at 0): the 1D equations of `axial`.
     pub axial: bool,
     /// FFx_mean is read: the force integral q and sub-steps that end on period boundaries.
     pub mean: bool,
@@ -1009,7 +1009,7 @@ impl Simulation for Transverse {
     /// state (with the two-phase solver too): x', y' and Fd' = kd (vd - x') + hd (vd' - x'')
     /// exactly; s', beta' and W_diss' exactly from the bristle rate z'; FFx_mean's as
     /// [`PeriodMean::rate`]; FF, FFx and FFy, which need the bristle's second derivative, as a
-    /// centred difference along the solution ([`Transverse::force_rates`]).
+    /// centred difference along the solution (`Transverse::force_rates`).
     fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {
         let vd = self.drive_velocity_now(values);
         let mut dydt = [0.0; MAX_DIM];

@@ -720,8 +720,9 @@ impl Dopri5 {
 
     /// Like [`Dopri5::integrate_switched`], but stops at the end of the first step that ends on
     /// a sign change of a switching function; returns where it stopped (`t1` if none came).
-    /// `largest` takes the largest |y[0]| met: at the steps' ends, and inside a step where y[0]'s
-    /// derivative changes sign, from the step's dense output (smooth there: steps end on kinks).
+    /// `largest` takes the largest `|y[0]|` met: at the steps' ends, and inside a step where
+    /// `y[0]`'s derivative changes sign, from the step's dense output (smooth there: steps end on
+    /// kinks).
     pub fn integrate_to_kink<S: Switching + ?Sized>(
         &mut self,
         ode: &S,

@@ -97,7 +97,7 @@ impl GaussKronrod {
         }
     }
 
-    /// The integral of `f` over `[a, b]`, each panel's error estimate ([`kronrod_error`])
+    /// The integral of `f` over `[a, b]`, each panel's error estimate (`kronrod_error`)
     /// within the tolerance for its length.
     pub fn integrate(
         &mut self,

@@ -5,7 +5,7 @@
 /// false position (superlinear, and safe: the bracket always shrinks), to `tolerance` in the step
 /// fraction or within `max_iterations` evaluations. Returns the far end of the final bracket, so
 /// the zero lies inside a step ended there; or `None` where `f` does not pass through zero but
-/// jumps across it ([`JUMP`]).
+/// jumps across it (`JUMP`).
 pub fn first_zero(
     mut f: impl FnMut(f64) -> f64,
     f0: f64,

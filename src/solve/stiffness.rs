@@ -5,7 +5,7 @@
 //!
 //! With Lawson's integrating factor the stages no longer see the decay it takes, so a second
 //! sign counts too: the factor's exponent sigma h past the same bound while the stages still
-//! see h |lambda| of at least [`COUPLED_H_LAMBDA`]. There the decay, coupled into the other
+//! see h |lambda| of at least `COUPLED_H_LAMBDA`. There the decay, coupled into the other
 //! components, holds the step, as it does on a stiff contact; a decay the factor takes whole
 //! (a relaxation that only follows its forcing) leaves the stages h |lambda| near 0.
 //!
