@@ -756,8 +756,23 @@ impl Transverse {
         }
     }
 
+    /// FF, FFx and s now: [`Transverse::forces`] without the angle beta (an arctangent), which
+    /// only its output needs, for the checks and readings that every step makes.
+    fn ff_ffx_s(&self) -> (f64, f64, f64) {
+        match &self.solver {
+            Solver::TwoPhase(tp) => {
+                let (ff, ffx, _, s, _) = tp.forces();
+                (ff, ffx, s)
+            }
+            _ => {
+                let c = self.p.contact(0.0, &self.y);
+                (c.ff, c.ffx(), c.s)
+            }
+        }
+    }
+
     pub fn mean_ffx(&self) -> f64 {
-        self.mean.value(self.t, self.forces().1)
+        self.mean.value(self.t, self.ff_ffx_s().1)
     }
 
     pub fn position(&self) -> (f64, f64) {
@@ -771,7 +786,7 @@ impl Transverse {
     /// The energy the contact has dissipated since the start: the work done on it minus the
     /// energy kt s^2/2 stored in its deflection.
     pub fn dissipated_energy(&self) -> f64 {
-        self.dissipated_with(self.forces().3)
+        self.dissipated_with(self.ff_ffx_s().2)
     }
 
     /// [`Transverse::dissipated_energy`] with the deflection s already at hand.
@@ -896,7 +911,7 @@ impl Simulation for Transverse {
         }
         self.t = t_end;
         self.p.set_time(t_end);
-        let (ff, _, _, s, _) = self.forces();
+        let (ff, _, s) = self.ff_ffx_s();
         if self.y.iter().all(|v| v.is_finite()) && ff.is_finite() {
             // The bristle damping ht (eq. 5) can return a little energy in transients, hence
             // the looser tolerance than scene L's.
@@ -1035,7 +1050,7 @@ impl Simulation for Transverse {
             vr::FFX => self.force_rates(&dydt)[1],
             vr::FFY => self.force_rates(&dydt)[2],
             vr::FFX_MEAN => {
-                let ffx = self.forces().1;
+                let ffx = self.ff_ffx_s().1;
                 self.mean.rate(self.t, ffx, self.force_rates(&dydt)[1])
             }
             _ => {
