@@ -80,12 +80,15 @@ fn kronrod_error(kronrod: f64, gauss: f64, resasc: f64) -> f64 {
     }
 }
 
-/// The panel length carries over from one integral to the next, like a solver's next step.
+/// The panel length carries over from one integral to the next, like a solver's next step: the
+/// one proposed after the last integral's first panel. Successive integrals (sub-steps between
+/// the sign changes of a periodic forcing) start alike more than one starts like the last one
+/// ended: a smooth end proposes a long panel that the next start, right after a reversal, rejects.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GaussKronrod {
     /// The error allowed per unit length of the interval.
     pub tol_per_length: f64,
-    /// The panel to try next (0: the whole interval).
+    /// The panel to try first in the next integral (0: the whole interval).
     pub h_next: f64,
 }
 
@@ -113,6 +116,7 @@ impl GaussKronrod {
         } else {
             b - a
         };
+        let mut first_proposal = None;
         while t < b {
             let last = t + h >= b;
             let step = if last { b - t } else { h };
@@ -145,6 +149,7 @@ impl GaussKronrod {
                 } else {
                     step * factor
                 };
+                first_proposal.get_or_insert(h);
             } else {
                 work.rejected += 1;
                 h = step * factor;
@@ -155,7 +160,7 @@ impl GaussKronrod {
                 ));
             }
         }
-        self.h_next = h;
+        self.h_next = first_proposal.unwrap_or(h);
         Ok(sum)
     }
 }
