@@ -153,6 +153,23 @@ fn kink_switches(
     k
 }
 
+/// Switching function `j` of those [`kink_switches`] writes for the rate `v` from its first
+/// index: v itself, then v -+ m vs for each of the band's `points`.
+#[inline]
+fn kink_switch(v: f64, vs: f64, points: &[f64], j: usize) -> f64 {
+    match j {
+        0 => v,
+        _ => {
+            let m = points[(j - 1) / 2];
+            if j % 2 == 1 {
+                v - m * vs
+            } else {
+                v + m * vs
+            }
+        }
+    }
+}
+
 /// Everything the equations need, fixed at build time.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {
@@ -346,6 +363,12 @@ impl Switching for Equations<'_> {
         self.switches_of(v1, v2, out)
     }
 
+    #[inline]
+    fn switch(&self, t: f64, y: &[f64], i: usize) -> f64 {
+        let (v1, v2) = self.p.radial_rates(y, self.support_velocity(t));
+        self.switch_of(v1, v2, i)
+    }
+
     /// The bristle relaxes at the slip rate: z' = w - slip z.
     #[inline]
     fn switches_and_decay(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> (usize, f64) {
@@ -393,6 +416,27 @@ impl Equations<'_> {
                 kink_switches(v2, vs, points, out, k)
             }
             SlipLaw::Total => kink_switches(vr, vs, points, out, 2),
+        }
+    }
+
+    /// `switches_of(v1, v2)[i]` alone.
+    #[inline]
+    fn switch_of(&self, v1: f64, v2: f64, i: usize) -> f64 {
+        let vr = v1 + v2;
+        let vs = self.p.law.vs;
+        let points = self.band_points;
+        match (i, self.p.slip) {
+            (0, _) => vr - BAND * vs,
+            (1, _) => vr + BAND * vs,
+            (_, SlipLaw::Split) => {
+                let family = 1 + 2 * points.len();
+                if i - 2 < family {
+                    kink_switch(v1, vs, points, i - 2)
+                } else {
+                    kink_switch(v2, vs, points, i - 2 - family)
+                }
+            }
+            (_, SlipLaw::Total) => kink_switch(vr, vs, points, i - 2),
         }
     }
 }

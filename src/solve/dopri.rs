@@ -23,8 +23,18 @@ pub const MAX_SWITCHES: usize = 12;
 
 /// An ODE whose right-hand side is smooth except where one of a few functions of (t, y) is zero.
 pub trait Switching: Ode {
-    /// Writes the switching functions into `out`; returns how many there are.
+    /// Writes the switching functions into `out`; returns how many there are. They read the
+    /// coupled states alone ([`Ode::coupled`]): the solvers locate kinks on an interpolant of
+    /// those.
     fn switches(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize;
+
+    /// Switching function `i` alone, as [`Switching::switches`] writes it; an ODE with many
+    /// switches gives it for less, since a kink's root finder asks for one at a time.
+    fn switch(&self, t: f64, y: &[f64], i: usize) -> f64 {
+        let mut out = [0.0; MAX_SWITCHES];
+        self.switches(t, y, &mut out);
+        out[i]
+    }
 
     /// The switching functions, and the rate sigma >= 0 at which the components
     /// [`Switching::decaying`] relax now (their right-hand side holds a term -sigma y_j).
@@ -260,7 +270,8 @@ const STRETCH: f64 = 1.1;
 const PREDICTED_SLACK: f64 = 1e-3;
 
 /// The dense output of an accepted trial as Hairer's five coefficient vectors (`contd5`), so each
-/// evaluation while a kink is being located costs a few products per state.
+/// evaluation while a kink is being located costs a few products per state. It covers the
+/// coupled states: all the switching functions, the narrow feature and y[0]'s extremes read.
 struct Dense {
     r: [[f64; MAX_DIM]; 5],
     /// sigma h, the components whose interpolant is of e^(sigma theta h) (y - c), and their c.
@@ -302,13 +313,11 @@ impl Dense {
         }
     }
 
-    /// The state at `t + theta h`.
-    fn at(&self, theta: f64, out: &mut [f64; MAX_DIM]) {
+    /// The first `len` states at `t + theta h` (the rest of `out` is left as it is).
+    fn at(&self, theta: f64, len: usize, out: &mut [f64; MAX_DIM]) {
         let u = 1.0 - theta;
         let r = &self.r;
-        // Whole rows (past the dimension they hold 0): a loop of constant length, which the
-        // compiler unrolls and runs two states at a time.
-        for j in 0..MAX_DIM {
+        for j in 0..len.min(MAX_DIM) {
             out[j] = r[0][j] + theta * (r[1][j] + u * (r[2][j] + theta * (r[3][j] + u * r[4][j])));
         }
         if !self.decaying.is_empty() {
@@ -564,12 +573,23 @@ impl Dopri5 {
         h: f64,
         theta: f64,
     ) -> [f64; MAX_SWITCHES] {
-        let n = ode.dim().min(MAX_DIM);
-        let mut state = [0.0; MAX_DIM];
         let mut sw = [0.0; MAX_SWITCHES];
-        dense.at(theta, &mut state);
-        ode.switches(t + theta * h, &state[..n], &mut sw);
+        let state = Self::coupled_on(ode, dense, theta);
+        ode.switches(t + theta * h, &state[..ode.dim().min(MAX_DIM)], &mut sw);
         sw
+    }
+
+    /// The coupled states at `t + theta h` on the dense output, all the switching functions
+    /// read (the quadratures after them are NaN in debug builds, to catch one that reads them).
+    #[inline]
+    fn coupled_on<S: Switching + ?Sized>(ode: &S, dense: &Dense, theta: f64) -> [f64; MAX_DIM] {
+        let mut state = [0.0; MAX_DIM];
+        let coupled = ode.coupled().min(MAX_DIM);
+        if cfg!(debug_assertions) {
+            state[coupled..].fill(f64::NAN);
+        }
+        dense.at(theta, coupled, &mut state);
+        state
     }
 
     /// Switching function `i` at `t + theta h` on the dense output.
@@ -581,7 +601,8 @@ impl Dopri5 {
         i: usize,
         theta: f64,
     ) -> f64 {
-        Self::switches_on(ode, t, dense, h, theta)[i]
+        let state = Self::coupled_on(ode, dense, theta);
+        ode.switch(t + theta * h, &state[..ode.dim().min(MAX_DIM)], i)
     }
 
     /// `watch`'s verdict on the step `(t, y, trial, h)` near a narrow feature, sampled on its
@@ -596,8 +617,7 @@ impl Dopri5 {
         r0: Narrow,
         r1: f64,
     ) -> Verdict {
-        let n = ode.dim().min(MAX_DIM);
-        let dense = Dense::new(n, y, tr, h);
+        let dense = Dense::new(ode.coupled().min(MAX_DIM), y, tr, h);
         watch.judge(t, h, h_min, r0, r1, |theta| {
             Self::narrow_on(ode, t, &dense, h, theta)
         })
@@ -635,7 +655,9 @@ impl Dopri5 {
         for i in 0..count {
             let (s0, s1) = (sw_prev[i], sw_now[i]);
             let slope = s1 - s0;
-            if s1 == 0.0 || slope == 0.0 || (s1 > 0.0) == (slope > 0.0) || -s1 / slope > 1.5 * r {
+            // Heading for zero (s1 and the slope of opposite signs, neither 0 nor NaN) and due
+            // within 1.5 r: multiplications, so that only a candidate costs a division.
+            if !(s1 * slope < 0.0 && s1.abs() <= 1.5 * r * slope.abs()) {
                 continue;
             }
             due[len] = (i, -s1 / slope);
@@ -643,7 +665,7 @@ impl Dopri5 {
         }
         let due = &mut due[..len];
         due.sort_unstable_by(|a, b| a.1.total_cmp(&b.1));
-        let n = ode.dim().min(MAX_DIM);
+        let coupled = ode.coupled().min(MAX_DIM);
         let mut best: Option<(usize, f64)> = None;
         let mut dense = None;
         // The fraction of the coming step searched: all of it, then up to the first zero found.
@@ -655,7 +677,8 @@ impl Dopri5 {
                 // Due well after the zero found (and the rest later still).
                 break;
             }
-            let d = dense.get_or_insert_with(|| Dense::new(n, &y_prev[..n], tr, h_prev));
+            let d =
+                dense.get_or_insert_with(|| Dense::new(coupled, &y_prev[..coupled], tr, h_prev));
             let switch_at =
                 |x: f64| Self::switch_on(ode, t_prev, d, h_prev, i, 1.0 + x * reach * r);
             let s1 = sw_now[i];
@@ -680,11 +703,13 @@ impl Dopri5 {
                 (0.0, s1, 1.0, end)
             };
             let width = hi - lo;
+            // To 1e-5 of the reach: an end placed on the kink may miss it by PREDICTED_SLACK,
+            // a hundred times more, and the extrapolation past the last step is no closer.
             let located = super::root::first_zero(
                 |u: f64| switch_at(lo + u * width),
                 f_lo,
                 f_hi,
-                1e-7 / width,
+                1e-5 / width,
                 100,
             );
             let Some(u) = located else { continue };
@@ -748,6 +773,7 @@ impl Dopri5 {
         if n > MAX_DIM || y.len() < n {
             return Err(format!("dopri5: {n} states do not fit (at most {MAX_DIM})"));
         }
+        let coupled = ode.coupled().min(n);
         // Written so that NaN fails too.
         let valid = t1 >= t0 && self.rtol > 0.0 && self.h_max > 0.0;
         if !valid {
@@ -849,7 +875,7 @@ impl Dopri5 {
                         first.get_or_insert(i);
                         continue;
                     }
-                    let d = dense.get_or_insert_with(|| Dense::new(n, y, &tr, h));
+                    let d = dense.get_or_insert_with(|| Dense::new(coupled, y, &tr, h));
                     if predicted == Some(i) {
                         // The end placed on a foreseen kink landed just past it (no sign change
                         // before the last sliver of the step): close enough to keep the step.
@@ -980,7 +1006,7 @@ impl Dopri5 {
             if let Some(largest) = stop.as_deref_mut() {
                 *largest = largest.max(y[0].abs());
                 if rate_at_start * k1[0] < 0.0 {
-                    let dense = Dense::new(n, &y_start[..n], &tr, h_taken);
+                    let dense = Dense::new(coupled, &y_start[..coupled], &tr, h_taken);
                     *largest = largest.max(dense.extreme_of_first(rate_at_start > 0.0).abs());
                 }
                 if on_kink.is_some() {

@@ -630,3 +630,30 @@ fn a_periodic_start_is_steady_from_the_first_period() {
     let refused = Transverse::new(&v, 0.0).unwrap_err();
     assert!(refused.contains("drive_source = prescribed"), "{refused}");
 }
+
+/// A switching function asked for alone (as the kink's root finder asks) is the one the whole
+/// set holds at its index, for both slip laws and every set of band points.
+#[test]
+fn a_switch_alone_is_the_one_the_set_holds() {
+    for slip in ["split", "total"] {
+        let sim = Transverse::new(&values("dopri5", slip), 0.0).unwrap();
+        let vd = Ramp {
+            value: 5e-4,
+            rate: 0.0,
+        };
+        for points in [&[][..], &BAND_POINTS_COARSE[..], &BAND_POINTS_FINE[..]] {
+            let eq = Equations::new(&sim.p, vd, points);
+            for (v1, v2) in [(1e-3, -2e-3), (-3e-6, 2e-6), (0.0, 5e-7), (2.5e-6, 0.0)] {
+                let mut all = [f64::NAN; MAX_SWITCHES];
+                let count = eq.switches_of(v1, v2, &mut all);
+                assert_eq!(
+                    count,
+                    2 + (1 + 2 * points.len()) * (1 + usize::from(slip == "split"))
+                );
+                for (i, s) in all[..count].iter().enumerate() {
+                    assert_eq!(eq.switch_of(v1, v2, i).to_bits(), s.to_bits(), "{slip} {i}");
+                }
+            }
+        }
+    }
+}
