@@ -632,6 +632,20 @@ impl Dop853 {
         sw
     }
 
+    /// Switching function `i` at `t + theta h` on the dense output.
+    fn switch_on<S: Switching + ?Sized>(
+        ode: &S,
+        t: f64,
+        dense: &Dense,
+        h: f64,
+        i: usize,
+        theta: f64,
+    ) -> f64 {
+        let mut state = [0.0; MAX_DIM];
+        dense.at(theta, &mut state);
+        ode.switch(t + theta * h, &state[..ode.dim().min(MAX_DIM)], i)
+    }
+
     /// The factor a step is divided by after a trial with error `err` (Hairer's rule).
     fn shrink(err: f64) -> f64 {
         err.powf(0.125) / SAFETY
@@ -729,7 +743,7 @@ impl Dop853 {
                     continue;
                 }
                 let d = dense.get_or_insert_with(|| Self::dense(ode, t, y, h, &mut tr, work));
-                let at = |theta: f64| Self::switches_on(ode, t, d, h, theta)[i];
+                let at = |theta: f64| Self::switch_on(ode, t, d, h, i, theta);
                 let located = super::root::first_zero(at, sw_old[i], sw_new[i], 1e-9, 100);
                 if let Some(theta) = located {
                     if theta * h > h_tiny && theta < theta_min {
