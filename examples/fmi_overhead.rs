@@ -14,11 +14,11 @@
 //! short runs taken in turn and paired keep the drift of a shared machine's speed out of them.
 //!
 //!   cargo run --release --example fmi_overhead [CALLS]          (default 5000)
-//!   cargo run --release --example fmi_overhead -- --only MODEL [H] [CALLS] [read]
+//!   cargo run --release --example fmi_overhead -- --only MODEL [H] [CALLS] [read] [NAME=VALUE...]
 //!
 //! The second form runs (a) alone for one model ((b) with `read`), for an instruction count
 //! under `valgrind --tool=callgrind`, which repeats where the CPU time of a shared machine does
-//! not.
+//! not; NAME=VALUE sets a real parameter before initialisation (`tolerance=1e-8`, say).
 
 use friction_fmu::cpu_clock::time_cpu;
 use friction_fmu::fmi2::ffi::Status;
@@ -48,10 +48,22 @@ fn median(mut xs: Vec<f64>) -> f64 {
 }
 
 /// CPU seconds of `calls` fmi2DoSteps of `step` through the FMI layer, reading every output
-/// after each when `read` is set.
-fn through_fmi(model: &Model, step: f64, calls: u64, read: bool) -> Result<f64, String> {
+/// after each when `read` is set, with the real parameters `settings` (value reference, value)
+/// set before initialisation.
+fn through_fmi(
+    model: &Model,
+    step: f64,
+    calls: u64,
+    read: bool,
+    settings: &[(u32, f64)],
+) -> Result<f64, String> {
     let id = model.table.model_identifier;
     let mut fmu = ImportedInstance::new(id, "overhead").map_err(|log| format!("{id}: {log:?}"))?;
+    for &(vr, value) in settings {
+        if fmu.set_real(&[vr], &[value]) != Status::Ok {
+            return Err(format!("{id}: fmi2SetReal: {}", fmu.last_message()));
+        }
+    }
     if fmu.initialize() != Status::Ok {
         return Err(format!("{id}: initialisation: {}", fmu.last_message()));
     }
@@ -100,8 +112,8 @@ fn measure(model: &Model, step: f64, calls: u64) -> Result<(), String> {
     let per_period = period(model, &values).min(calls as f64 * step);
     let mut times: [Vec<f64>; 4] = Default::default();
     for _ in 0..RUNS {
-        times[0].push(through_fmi(model, step, calls, false)?);
-        times[1].push(through_fmi(model, step, calls, true)?);
+        times[0].push(through_fmi(model, step, calls, false, &[])?);
+        times[1].push(through_fmi(model, step, calls, true, &[])?);
         times[2].push(direct(model, step, calls, step)?);
         times[3].push(direct(model, step, calls, per_period)?);
     }
@@ -137,8 +149,24 @@ fn only(args: &[String]) -> Result<(), String> {
         .get(2)
         .map_or(Ok(5000), |s| s.parse())
         .map_err(|e| format!("CALLS: {e}"))?;
-    let read = args.get(3).is_some_and(|a| a == "read");
-    let seconds = through_fmi(model, step, calls, read)?;
+    let rest = args.get(3..).unwrap_or_default();
+    let read = rest.iter().any(|a| a == "read");
+    let settings = rest
+        .iter()
+        .filter(|a| *a != "read")
+        .map(|a| {
+            let (name, value) = a
+                .split_once('=')
+                .ok_or(format!("{a}: expected NAME=VALUE"))?;
+            let var = model
+                .table
+                .by_name(name)
+                .ok_or_else(|| format!("{id} has no variable {name}"))?;
+            let value = value.parse().map_err(|e| format!("{a}: {e}"))?;
+            Ok((var.value_reference, value))
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    let seconds = through_fmi(model, step, calls, read, &settings)?;
     println!(
         "{id}: h = {step:e} s, {calls} calls, {:.0} ns of CPU a call",
         seconds / calls as f64 * 1e9
