@@ -18,14 +18,15 @@
 //!
 //! The second form runs (a) alone for one model ((b) with `read`), for an instruction count
 //! under `valgrind --tool=callgrind`, which repeats where the CPU time of a shared machine does
-//! not; NAME=VALUE sets a real parameter before initialisation (`tolerance=1e-8`, say).
+//! not; NAME=VALUE sets a parameter before initialisation (`tolerance=1e-8`, or a switch by its
+//! item's name, `solver=dop853`).
 
 use friction_fmu::cpu_clock::time_cpu;
 use friction_fmu::fmi2::ffi::Status;
 use friction_fmu::importer::ImportedInstance;
 use friction_fmu::models::{Model, Scope, MODELS};
 use friction_fmu::variables::values::ValueSet;
-use friction_fmu::variables::variable::Causality;
+use friction_fmu::variables::variable::{Causality, Kind};
 
 const STEPS: [f64; 2] = [1e-6, 1e-5];
 const RUNS: usize = 11;
@@ -47,21 +48,30 @@ fn median(mut xs: Vec<f64>) -> f64 {
     xs[xs.len() / 2]
 }
 
+/// A parameter's value set before initialisation.
+enum Setting {
+    Real(u32, f64),
+    Integer(u32, i32),
+}
+
 /// CPU seconds of `calls` fmi2DoSteps of `step` through the FMI layer, reading every output
-/// after each when `read` is set, with the real parameters `settings` (value reference, value)
-/// set before initialisation.
+/// after each when `read` is set, with `settings` made before initialisation.
 fn through_fmi(
     model: &Model,
     step: f64,
     calls: u64,
     read: bool,
-    settings: &[(u32, f64)],
+    settings: &[Setting],
 ) -> Result<f64, String> {
     let id = model.table.model_identifier;
     let mut fmu = ImportedInstance::new(id, "overhead").map_err(|log| format!("{id}: {log:?}"))?;
-    for &(vr, value) in settings {
-        if fmu.set_real(&[vr], &[value]) != Status::Ok {
-            return Err(format!("{id}: fmi2SetReal: {}", fmu.last_message()));
+    for setting in settings {
+        let status = match *setting {
+            Setting::Real(vr, value) => fmu.set_real(&[vr], &[value]),
+            Setting::Integer(vr, value) => fmu.set_integer(&[vr], &[value]),
+        };
+        if status != Status::Ok {
+            return Err(format!("{id}: setting a parameter: {}", fmu.last_message()));
         }
     }
     if fmu.initialize() != Status::Ok {
@@ -162,10 +172,25 @@ fn only(args: &[String]) -> Result<(), String> {
                 .table
                 .by_name(name)
                 .ok_or_else(|| format!("{id} has no variable {name}"))?;
-            let value = value.parse().map_err(|e| format!("{a}: {e}"))?;
-            Ok((var.value_reference, value))
+            let vr = var.value_reference;
+            match var.kind {
+                Kind::Real { .. } => value
+                    .parse()
+                    .map(|x| Setting::Real(vr, x))
+                    .map_err(|e| format!("{a}: {e}")),
+                Kind::Switch { type_name, .. } => model
+                    .table
+                    .enum_type(type_name)
+                    .and_then(|t| t.value_of(value))
+                    .map(|i| Setting::Integer(vr, i))
+                    .ok_or_else(|| format!("{a}: no item {value} in {type_name}")),
+                Kind::Integer { .. } => value
+                    .parse()
+                    .map(|i| Setting::Integer(vr, i))
+                    .map_err(|e| format!("{a}: {e}")),
+            }
         })
-        .collect::<Result<Vec<_>, String>>()?;
+        .collect::<Result<Vec<Setting>, String>>()?;
     let seconds = through_fmi(model, step, calls, read, &settings)?;
     println!(
         "{id}: h = {step:e} s, {calls} calls, {:.0} ns of CPU a call",

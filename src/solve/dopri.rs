@@ -14,6 +14,10 @@
 //! exponential, with several times the steps and a larger error on scene T's steady sliding
 //! without vibration: docs/performance.md, "Measurements behind the code").
 
+mod ahead;
+
+pub use ahead::{StepAhead, SAVED_LEN as STEP_AHEAD_SAVED};
+
 use super::narrow::{Narrow, Verdict, Watch};
 use super::stiffness::StiffnessTest;
 use super::{Integrator, Ode, Work, MAX_DIM};
@@ -77,7 +81,7 @@ pub const MAX_DECAYING: usize = 2;
 
 /// The components a step integrates with the integrating factor: those of
 /// [`Switching::decaying`] below the dimension, at most [`MAX_DECAYING`] of them.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct Decaying {
     index: [usize; MAX_DECAYING],
     len: usize,
@@ -315,17 +319,25 @@ impl Dense {
 
     /// The first `len` states at `t + theta h` (the rest of `out` is left as it is).
     fn at(&self, theta: f64, len: usize, out: &mut [f64; MAX_DIM]) {
+        self.at_with_decay(theta, len, out);
+    }
+
+    /// [`Dense::at`], returning the integrating factor's way back there, e^(-sigma theta h)
+    /// (1 without one).
+    fn at_with_decay(&self, theta: f64, len: usize, out: &mut [f64; MAX_DIM]) -> f64 {
         let u = 1.0 - theta;
         let r = &self.r;
         for j in 0..len.min(MAX_DIM) {
             out[j] = r[0][j] + theta * (r[1][j] + u * (r[2][j] + theta * (r[3][j] + u * r[4][j])));
         }
-        if !self.decaying.is_empty() {
-            let back = (-self.sigma_h * theta).exp();
-            for (m, j) in self.decaying.iter().enumerate() {
-                out[j] = self.shift[m] + out[j] * back;
-            }
+        if self.decaying.is_empty() {
+            return 1.0;
         }
+        let back = (-self.sigma_h * theta).exp();
+        for (m, j) in self.decaying.iter().enumerate() {
+            out[j] = self.shift[m] + out[j] * back;
+        }
+        back
     }
 
     /// The extreme of y[0] inside the step, its maximum (`maximum`) or minimum, where y[0]'s
@@ -740,7 +752,28 @@ impl Dopri5 {
         y: &mut [f64],
         work: &mut Work,
     ) -> Result<(), String> {
-        self.run(ode, (t0, t1), y, work, None).map(|_| ())
+        self.run(ode, (t0, t1), y, work, None, None).map(|_| ())
+    }
+
+    /// Integrates from `t0` towards `t1` up to the end of the first step that reaches `past`
+    /// (in `(t0, t1]`), the steps as the controller proposes them. Leaves `y` at that step's
+    /// end and returns the end (`t1` itself where the step reached it) and the step, to be read
+    /// inside to its order ([`StepAhead`]; two right-hand sides more).
+    pub fn step_ahead<S: Switching + ?Sized>(
+        &mut self,
+        ode: &S,
+        (t0, past, t1): (f64, f64, f64),
+        y: &mut [f64],
+        work: &mut Work,
+    ) -> Result<(f64, StepAhead), String> {
+        let mut step = None;
+        let end = if t1 > t0 {
+            self.run(ode, (t0, t1), y, work, None, Some((past, &mut step)))?
+        } else {
+            t0
+        };
+        let step = step.ok_or_else(|| format!("dopri5: no step to take ahead in [{t0}, {t1}]"))?;
+        Ok((end, step))
     }
 
     /// Like [`Dopri5::integrate_switched`], but stops at the end of the first step that ends on
@@ -756,11 +789,12 @@ impl Dopri5 {
         work: &mut Work,
         largest: &mut f64,
     ) -> Result<f64, String> {
-        self.run(ode, (t0, t1), y, work, Some(largest))
+        self.run(ode, (t0, t1), y, work, Some(largest), None)
     }
 
     /// The integration; with `stop` (the largest |y[0]| met so far), up to the first kink it
-    /// stops at.
+    /// stops at; with `ahead` (a time and a place for a step), up to the end of the first
+    /// accepted step that reaches that time, which it holds.
     fn run<S: Switching + ?Sized>(
         &mut self,
         ode: &S,
@@ -768,6 +802,7 @@ impl Dopri5 {
         y: &mut [f64],
         work: &mut Work,
         mut stop: Option<&mut f64>,
+        mut ahead: Option<(f64, &mut Option<StepAhead>)>,
     ) -> Result<f64, String> {
         let n = ode.dim();
         if n > MAX_DIM || y.len() < n {
@@ -851,7 +886,7 @@ impl Dopri5 {
                 a[..n].copy_from_slice(&y[..n]);
                 a
             };
-            let sw_start = sw_old;
+            let (t_start, sw_start) = (t, sw_old);
             let rate_at_start = k1[0];
             let sigma_mid = (sigma + 0.5 * h * sigma_slope).max(0.0);
             self.trial(ode, t, y, &k1, h, (sigma, sigma_mid), &mut tr, work);
@@ -1010,6 +1045,18 @@ impl Dopri5 {
                     *largest = largest.max(dense.extreme_of_first(rate_at_start > 0.0).abs());
                 }
                 if on_kink.is_some() {
+                    return Ok(t);
+                }
+            }
+            if let Some((past, slot)) = &mut ahead {
+                if t >= *past {
+                    **slot = Some(StepAhead::new(
+                        ode,
+                        (t_start, &y_start[..n]),
+                        &tr,
+                        h_taken,
+                        work,
+                    ));
                     return Ok(t);
                 }
             }

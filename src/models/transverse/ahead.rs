@@ -1,0 +1,282 @@
+//! Steps taken past the communication point. Where the master's steps are much shorter than
+//! dopri5's (a microsecond against its few at the default tolerance), a call takes the step
+//! dopri5 proposes whole, past its end, and reads the state at the point from the step's
+//! interpolant of the step's own order ([`StepAhead`]); the calls that follow inside the step
+//! read it too, instead of each taking a step of its own, cut to the call. Only while the drive
+//! is prescribed: an input may change at every call, and the step would no longer be the
+//! motion's.
+
+use super::{axial, band_points, Drive, Equations, Solver, Transverse, Q};
+use crate::models::ramp::Ramp;
+use crate::solve::adaptive::Adaptive;
+use crate::solve::dopri::{StepAhead, STEP_AHEAD_SAVED};
+use crate::solve::MAX_DIM;
+
+/// A dopri5 step taken past the communication point, with where the integration goes on from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Ahead {
+    step: StepAhead,
+    /// The absolute time the step's equations count from (its start).
+    origin: f64,
+    /// The absolute time of its end, and the state there.
+    end: f64,
+    y_end: [f64; MAX_DIM],
+    /// The force integral q up to the last point read, which the period's mean holds.
+    q_read: f64,
+}
+
+/// The fewest communication steps a step taken ahead must hold: reading costs its two
+/// right-hand sides more, where each call cut to its span takes a step of seven.
+const CALLS_AHEAD: f64 = 2.0;
+
+/// How many numbers a step taken ahead adds to a saved state, after a flag.
+pub(super) const SAVED: usize = 3 + MAX_DIM + STEP_AHEAD_SAVED;
+
+impl Transverse {
+    /// Whether calls may read steps taken ahead: dopri5, with the drive prescribed.
+    pub(super) fn looks_ahead(&self) -> bool {
+        matches!(self.solver, Solver::Adaptive(Adaptive::Dopri5(_)))
+            && matches!(self.drive, Drive::Prescribed(_))
+    }
+
+    /// Answers a call ending at `t_end` from the step taken ahead, if there is one: inside it,
+    /// from its interpolant (true); at or past its end, by going on from there (true if `t_end`
+    /// is its end, to round-off; false if the call must go on from `self.t`).
+    pub(super) fn read_ahead(&mut self, t_end: f64) -> bool {
+        let Some(ahead) = &mut self.ahead else {
+            return false;
+        };
+        let slack = self.mean.slack(t_end);
+        if t_end < ahead.end - slack {
+            ahead.step.at(t_end - ahead.origin, &mut self.y);
+            if self.trim.mean {
+                // Inside the period: the step ends on its boundary at the latest.
+                self.mean.add(self.y[Q] - ahead.q_read, t_end);
+            }
+            ahead.q_read = self.y[Q];
+            self.t = t_end;
+            return true;
+        }
+        let ahead = *ahead;
+        self.ahead = None;
+        self.y = ahead.y_end;
+        if self.trim.mean {
+            self.mean.add(ahead.y_end[Q] - ahead.q_read, ahead.end);
+        }
+        self.t = if t_end <= ahead.end + slack {
+            t_end
+        } else {
+            ahead.end
+        };
+        self.t == t_end
+    }
+
+    /// Where steps may be taken ahead and dopri5's proposed step from `t` holds
+    /// [`CALLS_AHEAD`] calls ending at `t_end`, takes that step (not past the period's
+    /// `boundary`, when the mean is read) and holds it for [`Transverse::read_ahead`] (true).
+    /// False, with nothing changed, where it may not.
+    pub(super) fn look_ahead(&mut self, t: f64, t_end: f64, boundary: f64) -> Result<bool, String> {
+        let Drive::Prescribed(vd) = self.drive else {
+            return Ok(false);
+        };
+        let points = band_points(&self.solver);
+        let Solver::Adaptive(Adaptive::Dopri5(d)) = &mut self.solver else {
+            return Ok(false);
+        };
+        let reach = (boundary - t).min(1.0 / self.p.f);
+        if d.h.min(d.h_max).min(reach) < CALLS_AHEAD * (t_end - t) {
+            return Ok(false);
+        }
+        // The equations count time from the step's start.
+        let mut p = self.p;
+        p.set_time(t);
+        let vd = Ramp {
+            value: vd,
+            rate: 0.0,
+        };
+        self.y[Q] = 0.0;
+        let (end, step) = if self.trim.axial {
+            let axial = axial::Axial {
+                p: &p,
+                vd,
+                dim: self.trim.dim(),
+                band_points: points,
+            };
+            d.step_ahead(&axial, (0.0, t_end - t, reach), &mut self.y, &mut self.work)?
+        } else {
+            let planar = Equations::new(&p, vd, points);
+            d.step_ahead(
+                &planar,
+                (0.0, t_end - t, reach),
+                &mut self.y,
+                &mut self.work,
+            )?
+        };
+        // A step that reached the period's boundary ends on it, to the bit.
+        let end_time = if end == boundary - t {
+            boundary
+        } else {
+            t + end
+        };
+        // The calls that read inside the step are checked here, at its end.
+        let contact = p.contact(end, &self.y);
+        self.check_motion(end_time, &self.y, (contact.ff, contact.s))?;
+        self.ahead = Some(Ahead {
+            step,
+            origin: t,
+            end: end_time,
+            y_end: self.y,
+            q_read: 0.0,
+        });
+        Ok(true)
+    }
+
+    /// Appends the step taken ahead to a saved state: a flag, then [`SAVED`] numbers.
+    pub(super) fn save_ahead(&self, out: &mut Vec<f64>) {
+        match &self.ahead {
+            None => out.push(0.0),
+            Some(a) => {
+                out.extend_from_slice(&[1.0, a.origin, a.end, a.q_read]);
+                out.extend_from_slice(&a.y_end);
+                a.step.write(out);
+            }
+        }
+    }
+
+    /// The step taken ahead from what [`Transverse::save_ahead`] wrote.
+    pub(super) fn restore_ahead(&mut self, saved: &[f64]) -> Result<(), String> {
+        let refused =
+            || "a TransverseFriction state holds a step taken ahead that is not one".to_string();
+        self.ahead = match saved {
+            [flag] if *flag == 0.0 => None,
+            [flag, origin, end, q_read, rest @ ..]
+                if *flag == 1.0 && rest.len() == SAVED - 3 && self.looks_ahead() =>
+            {
+                let (y, step) = rest.split_at(MAX_DIM);
+                let step = StepAhead::read(step).ok_or_else(refused)?;
+                let mut y_end = [0.0; MAX_DIM];
+                y_end.copy_from_slice(y);
+                Some(Ahead {
+                    step,
+                    origin: *origin,
+                    end: *end,
+                    y_end,
+                    q_read: *q_read,
+                })
+            }
+            _ => return Err(refused()),
+        };
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::table::{vr, DRIVE_SOURCE, SLIP_LAW, TABLE};
+    use super::super::Transverse;
+    use crate::models::Simulation;
+    use crate::variables::values::ValueSet;
+
+    fn values(slip: &str, tolerance: f64) -> ValueSet {
+        let mut v = ValueSet::start(&TABLE);
+        v.set(vr::SLIP_LAW, f64::from(SLIP_LAW.value_of(slip).unwrap()));
+        v.set(vr::TOLERANCE, tolerance);
+        v
+    }
+
+    /// Oracle: a run at rtol 1e-13 calling every 10 us. Calls of 1 us, shorter than dopri5's
+    /// steps at rtol 1e-8, read steps taken ahead: FFx and FFx_mean at every tenth point are
+    /// as close to the reference as those of a run at the same tolerance calling every 10 us
+    /// (within twice its largest difference, or within the tolerance of FC), from fewer
+    /// right-hand sides than the seven a call takes stepping to its end.
+    #[test]
+    fn short_calls_read_steps_taken_ahead_within_the_tolerance() {
+        for slip in ["split", "total"] {
+            let (tight, v) = (values(slip, 1e-13), values(slip, 1e-8));
+            let mut reference = Transverse::new(&tight, 0.0).unwrap();
+            let mut stepped = Transverse::new(&v, 0.0).unwrap();
+            let mut sim = Transverse::new(&v, 0.0).unwrap();
+            let (mut worst, mut worst_stepped) = ([0.0f64; 2], [0.0f64; 2]);
+            let (mut calls, mut read_inside) = (0, 0);
+            for _ in 0..200 {
+                reference.do_step(1e-5, &tight).unwrap();
+                stepped.do_step(1e-5, &v).unwrap();
+                for _ in 0..10 {
+                    sim.do_step(1e-6, &v).unwrap();
+                    calls += 1;
+                    read_inside += usize::from(sim.ahead.is_some());
+                }
+                let off = |s: &Transverse| {
+                    let fc = s.fc;
+                    [
+                        (s.forces().1 - reference.forces().1).abs() / fc,
+                        (s.mean_ffx() - reference.mean_ffx()).abs() / fc,
+                    ]
+                };
+                for (w, o) in worst.iter_mut().zip(off(&sim)) {
+                    *w = w.max(o);
+                }
+                for (w, o) in worst_stepped.iter_mut().zip(off(&stepped)) {
+                    *w = w.max(o);
+                }
+            }
+            for (w, s) in worst.iter().zip(&worst_stepped) {
+                assert!(
+                    *w <= (2.0 * s).max(1e-8),
+                    "{slip}: {worst:?} {worst_stepped:?}"
+                );
+            }
+            assert!(read_inside * 2 > calls, "{slip}: {read_inside} of {calls}");
+            assert!(
+                sim.work.rhs_evaluations < 5 * calls as u64,
+                "{slip}: {:?} for {calls} calls",
+                sim.work
+            );
+        }
+    }
+
+    /// A state saved while a step taken ahead is being read holds that step: restored, the run
+    /// goes on to the same bits. A state that says it holds one where this simulation takes
+    /// none is refused.
+    #[test]
+    fn a_state_saved_inside_a_step_taken_ahead_replays_the_motion() {
+        let v = values("split", 1e-8);
+        let mut sim = Transverse::new(&v, 0.0).unwrap();
+        while sim.ahead.is_none() || sim.time() < 1e-4 {
+            sim.do_step(1e-6, &v).unwrap();
+        }
+        let saved = sim.save();
+        let run_on = |s: &mut Transverse| {
+            for _ in 0..1000 {
+                s.do_step(1e-6, &v).unwrap();
+            }
+            s.save()
+        };
+        let after = run_on(&mut sim);
+        let mut other = Transverse::new(&v, 0.0).unwrap();
+        other.restore(&saved).unwrap();
+        assert_eq!(run_on(&mut other), after);
+
+        let mut rk4 = v.clone();
+        rk4.set(vr::SOLVER, 2.0);
+        let mut other = Transverse::new(&rk4, 0.0).unwrap();
+        assert!(other.restore(&saved).is_err());
+    }
+
+    /// With the drive velocity an input, which may change at every call, no step is taken
+    /// ahead.
+    #[test]
+    fn an_input_drive_takes_no_step_ahead() {
+        let mut v = values("split", 1e-8);
+        v.set(
+            vr::DRIVE_SOURCE,
+            f64::from(DRIVE_SOURCE.value_of("input").unwrap()),
+        );
+        v.set(vr::VD_IN, 5e-4);
+        let mut sim = Transverse::new(&v, 0.0).unwrap();
+        for _ in 0..200 {
+            sim.do_step(1e-6, &v).unwrap();
+            assert!(sim.ahead.is_none());
+        }
+    }
+}

@@ -1,0 +1,294 @@
+//! A dopri5 step read inside: an interpolant of the step's own order, for the communication
+//! points that fall inside a step taken past them.
+//!
+//! Hairer's `contd5`, which locates kinks, is of order 4 inside the step, one below the step
+//! itself: read at every point it lands several times the tolerance off (docs/performance.md,
+//! "Cost per call"). Two more right-hand sides raise it to order 5 (bootstrapping, as Enright,
+//! Jackson, Norsett and Thomsen, "Interpolants for Runge-Kutta formulas", 1986): the
+//! derivative at theta = 1/3 and 2/3, evaluated at contd5's state there, whose error the step
+//! then multiplies by h. The quintic matches the step's ends, the derivatives there and those
+//! two. With the integrating factor it is the quintic of u = e^(sigma tau) (y - c), as contd5's.
+
+use super::{Decaying, Dense, Switching, Trial, MAX_DECAYING};
+use crate::solve::{Work, MAX_DIM};
+
+/// The interior nodes whose derivatives the quintic matches.
+const NODES: [f64; 2] = [1.0 / 3.0, 2.0 / 3.0];
+
+/// u(theta) = u0 + sum_m a_m theta^m, m = 1..5, from D = u1 - u0 and the derivatives times h at
+/// 0, 1/3, 2/3 and 1 (rows: a_1..a_5; columns: D, F0, F(1/3), F(2/3), F1).
+const WEIGHTS: [[f64; 5]; 5] = [
+    [0.0, 1.0, 0.0, 0.0, 0.0],
+    [30.0, -13.0 / 2.0, -27.0 / 4.0, -27.0 / 2.0, -13.0 / 4.0],
+    [-110.0, 67.0 / 4.0, 135.0 / 4.0, 189.0 / 4.0, 49.0 / 4.0],
+    [135.0, -18.0, -189.0 / 4.0, -54.0, -63.0 / 4.0],
+    [-54.0, 27.0 / 4.0, 81.0 / 4.0, 81.0 / 4.0, 27.0 / 4.0],
+];
+
+/// One accepted dopri5 step, read at any point inside it to the step's order.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepAhead {
+    /// The step's start and length, in the equations' time.
+    pub t: f64,
+    pub h: f64,
+    /// The states covered.
+    n: usize,
+    /// u0 and a_1..a_5 of each state.
+    coefficients: [[f64; MAX_DIM]; 6],
+    /// sigma h, the components whose quintic is that of u, and their shift c.
+    sigma_h: f64,
+    decaying: Decaying,
+    shift: [f64; MAX_DECAYING],
+}
+
+/// How many numbers [`StepAhead::write`] writes.
+pub const SAVED_LEN: usize = 5 + 6 * MAX_DIM + 2 * MAX_DECAYING;
+
+impl StepAhead {
+    /// The interpolant of the accepted trial `tr` of length `h` from `(t, y)`: two right-hand
+    /// sides more, counted in `work`.
+    pub(super) fn new<S: Switching + ?Sized>(
+        ode: &S,
+        (t, y): (f64, &[f64]),
+        tr: &Trial,
+        h: f64,
+        work: &mut Work,
+    ) -> Self {
+        let n = ode.dim().min(MAX_DIM);
+        let coupled = ode.coupled().min(n);
+        // The right-hand side reads the coupled states alone (the decaying ones among them).
+        let order_four = Dense::new(coupled, y, tr, h);
+        let sigma = tr.sigma;
+        // u'(theta) h at the nodes, from contd5's state there.
+        let mut node_slopes = [[0.0; MAX_DIM]; 2];
+        for (slopes, theta) in node_slopes.iter_mut().zip(NODES) {
+            let mut y_node = [0.0; MAX_DIM];
+            if cfg!(debug_assertions) {
+                // A right-hand side that reads a quadrature it declared uncoupled gets NaN.
+                y_node[coupled..n].fill(f64::NAN);
+            }
+            let back = order_four.at_with_decay(theta, coupled, &mut y_node);
+            let mut f = [0.0; MAX_DIM];
+            ode.rhs(t + theta * h, &y_node[..n], &mut f[..n]);
+            for (m, j) in tr.decaying.iter().enumerate() {
+                f[j] = (f[j] + sigma * (y_node[j] - tr.shift[m])) / back;
+            }
+            for j in 0..n {
+                slopes[j] = h * f[j];
+            }
+        }
+        work.rhs_evaluations += 2;
+        let mut u0 = [0.0; MAX_DIM];
+        u0[..n].copy_from_slice(&y[..n]);
+        let mut u1 = tr.y_new;
+        for (m, j) in tr.decaying.iter().enumerate() {
+            u0[j] -= tr.shift[m];
+            u1[j] = (u1[j] - tr.shift[m]) * tr.g[6];
+        }
+        let mut coefficients = [[0.0; MAX_DIM]; 6];
+        for j in 0..n {
+            let data = [
+                u1[j] - u0[j],
+                h * tr.k[0][j],
+                node_slopes[0][j],
+                node_slopes[1][j],
+                h * tr.k[6][j],
+            ];
+            coefficients[0][j] = u0[j];
+            for (row, weights) in coefficients[1..].iter_mut().zip(&WEIGHTS) {
+                row[j] = weights.iter().zip(&data).map(|(w, d)| w * d).sum();
+            }
+        }
+        StepAhead {
+            t,
+            h,
+            n,
+            coefficients,
+            sigma_h: sigma * h,
+            decaying: tr.decaying,
+            shift: tr.shift,
+        }
+    }
+
+    /// The step's end.
+    pub fn end(&self) -> f64 {
+        self.t + self.h
+    }
+
+    /// The states at time `t` (inside the step) into `out`.
+    pub fn at(&self, t: f64, out: &mut [f64; MAX_DIM]) {
+        let theta = (t - self.t) / self.h;
+        let c = &self.coefficients;
+        for j in 0..self.n {
+            out[j] = c[0][j]
+                + theta
+                    * (c[1][j]
+                        + theta
+                            * (c[2][j] + theta * (c[3][j] + theta * (c[4][j] + theta * c[5][j]))));
+        }
+        if !self.decaying.is_empty() {
+            let back = (-self.sigma_h * theta).exp();
+            for (m, j) in self.decaying.iter().enumerate() {
+                out[j] = self.shift[m] + out[j] * back;
+            }
+        }
+    }
+
+    /// Appends [`SAVED_LEN`] numbers that [`StepAhead::read`] takes back to the same bits.
+    pub fn write(&self, out: &mut Vec<f64>) {
+        out.extend_from_slice(&[self.t, self.h, self.n as f64, self.sigma_h]);
+        out.push(self.decaying.len as f64);
+        for row in &self.coefficients {
+            out.extend_from_slice(row);
+        }
+        out.extend(self.decaying.index.iter().map(|&j| j as f64));
+        out.extend_from_slice(&self.shift);
+    }
+
+    /// The step [`StepAhead::write`] wrote; None where the numbers cannot be one.
+    pub fn read(saved: &[f64]) -> Option<Self> {
+        if saved.len() != SAVED_LEN {
+            return None;
+        }
+        let count = |x: f64, most: usize| {
+            (x >= 0.0 && x <= most as f64 && x.fract() == 0.0).then_some(x as usize)
+        };
+        let n = count(saved[2], MAX_DIM)?;
+        let len = count(saved[4], MAX_DECAYING)?;
+        let mut coefficients = [[0.0; MAX_DIM]; 6];
+        for (row, chunk) in coefficients.iter_mut().zip(saved[5..].chunks(MAX_DIM)) {
+            row.copy_from_slice(chunk);
+        }
+        let rest = &saved[5 + 6 * MAX_DIM..];
+        let mut decaying = Decaying::NONE;
+        for (index, &x) in decaying.index.iter_mut().zip(&rest[..MAX_DECAYING]) {
+            *index = count(x, n.saturating_sub(1))?;
+        }
+        decaying.len = len;
+        let mut shift = [0.0; MAX_DECAYING];
+        shift.copy_from_slice(&rest[MAX_DECAYING..]);
+        let step = StepAhead {
+            t: saved[0],
+            h: saved[1],
+            n,
+            coefficients,
+            sigma_h: saved[3],
+            decaying,
+            shift,
+        };
+        (step.h > 0.0 && step.h.is_finite()).then_some(step)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Dopri5, Switching, MAX_SWITCHES};
+    use super::*;
+    use crate::solve::test_odes::Harmonic;
+    use crate::solve::Ode;
+
+    /// y' = -(30 + 20 t) y + sin t: a decay the integrating factor takes, at a rate that moves.
+    struct Relaxing;
+    impl Ode for Relaxing {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
+            dydt[0] = -(30.0 + 20.0 * t) * y[0] + t.sin();
+        }
+    }
+    impl Switching for Relaxing {
+        fn switches(&self, _t: f64, _y: &[f64], _out: &mut [f64; MAX_SWITCHES]) -> usize {
+            0
+        }
+        fn switches_and_decay(
+            &self,
+            t: f64,
+            _y: &[f64],
+            _out: &mut [f64; MAX_SWITCHES],
+        ) -> (usize, f64) {
+            (0, 30.0 + 20.0 * t)
+        }
+        fn decaying(&self) -> &[usize] {
+            &[0]
+        }
+    }
+
+    /// The largest error at `t0 + 0.37 h` of one step of `h` from `(t0, y0)` read inside, against
+    /// `exact` there.
+    fn read_error<S: Switching>(ode: &S, (t0, y0): (f64, &[f64]), h: f64, exact: &[f64]) -> f64 {
+        // A tolerance that accepts the step as proposed.
+        let mut d = Dopri5::new(1e3, [1e3; MAX_DIM], h);
+        d.h = h;
+        let n = ode.dim();
+        let mut y = [0.0; MAX_DIM];
+        y[..n].copy_from_slice(y0);
+        let (end, step) = d
+            .step_ahead(ode, (t0, t0 + h, t0 + h), &mut y, &mut Work::default())
+            .unwrap();
+        assert!(end == t0 + h && (step.end() - end).abs() < 1e-12);
+        let mut read = [0.0; MAX_DIM];
+        step.at(t0 + 0.37 * h, &mut read);
+        (0..n)
+            .map(|j| (read[j] - exact[j]).abs())
+            .fold(0.0, f64::max)
+    }
+
+    /// Oracle: the closed form of the harmonic oscillator, and a run at rtol 1e-14 of a
+    /// relaxation under the integrating factor. Halving the step divides the error read inside
+    /// it by about 64 (2^6, a local error of order 6, as the step's own); contd5's order-4
+    /// reading would fall by 32.
+    #[test]
+    fn reads_inside_the_step_to_fifth_order() {
+        let steps = [0.4, 0.2, 0.1, 0.05];
+        let harmonic = steps.map(|h| {
+            let t = 0.3 + 0.37 * h;
+            read_error(
+                &Harmonic,
+                (0.3, &[0.3f64.cos(), -0.3f64.sin()]),
+                h,
+                &[t.cos(), -t.sin()],
+            )
+        });
+        let relaxing = steps.map(|h| {
+            let h = 0.1 * h;
+            let mut exact = [0.01];
+            let mut d = Dopri5::new(1e-14, [1e-16; MAX_DIM], 1.0);
+            d.integrate_switched(
+                &Relaxing,
+                0.3,
+                0.3 + 0.37 * h,
+                &mut exact,
+                &mut Work::default(),
+            )
+            .unwrap();
+            read_error(&Relaxing, (0.3, &[0.01]), h, &exact)
+        });
+        for errors in [harmonic, relaxing] {
+            for pair in errors.windows(2) {
+                let fall = pair[0] / pair[1];
+                assert!((55.0..80.0).contains(&fall), "{errors:?}");
+            }
+        }
+    }
+
+    /// What [`StepAhead::write`] writes, [`StepAhead::read`] takes back to the same step;
+    /// numbers that cannot be one are refused.
+    #[test]
+    fn a_written_step_reads_back() {
+        let mut d = Dopri5::new(1e-6, [1e-6; MAX_DIM], 1.0);
+        let mut y = [0.01; MAX_DIM];
+        let (_, step) = d
+            .step_ahead(&Relaxing, (0.3, 0.3, 1.0), &mut y, &mut Work::default())
+            .unwrap();
+        assert!(step.sigma_h > 0.0);
+        let mut saved = Vec::new();
+        step.write(&mut saved);
+        assert_eq!(saved.len(), SAVED_LEN);
+        assert_eq!(StepAhead::read(&saved), Some(step));
+        let mut bad = saved.clone();
+        bad[2] = 1.5;
+        assert_eq!(StepAhead::read(&bad), None);
+        assert_eq!(StepAhead::read(&saved[1..]), None);
+    }
+}
