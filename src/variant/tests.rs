@@ -60,7 +60,7 @@ fn a_valid_file_gives_its_values_and_keeps_what_it_lists() {
     assert_eq!(variant.kept, vec![vr::KT, vr::VD, vr::FFX, vr::FD]);
     assert_eq!(variant.experiment.stop, 0.016);
     // Not given: it states the tolerance the solver integrates to (the model's default).
-    assert_eq!(variant.experiment.tolerance, Some(1e-10));
+    assert_eq!(variant.experiment.tolerance, Some(1e-8));
     let scope = variant.scope();
     assert!(scope.exposes(vr::VD) && scope.exposes(vr::FFX));
     assert!(scope.fixes(vr::VA) && scope.fixes(vr::VD_IN) && scope.fixes(vr::FF));
@@ -89,7 +89,7 @@ fn the_trimmed_xml_lists_the_kept_variables_and_hashes_to_its_guid() {
     }
     assert!(xml.contains("start=\"5e-4\""));
     assert!(!xml.contains("name=\"va\"") && !xml.contains("SlipLaw"));
-    assert!(xml.contains("stopTime=\"0.016\"") && xml.contains("tolerance=\"0.0000000001\""));
+    assert!(xml.contains("stopTime=\"0.016\"") && xml.contains("tolerance=\"0.00000001\""));
     assert!(xml.contains("modelIdentifier=\"Fig4a\""));
     // Fd depends on vd_in in the full model; hidden, it is no dependency here.
     assert!(xml.contains("<Unknown index=\"4\" dependencies=\"\"/>"));
@@ -317,12 +317,12 @@ fn a_bad_experiment_is_refused() {
         &fig4a_with("step = 1e-5", "step = 1e-5\ntolerance = 1e-6"),
         &[
             "key `experiment.tolerance`",
-            "the solver integrates to tolerance = 1e-10",
+            "the solver integrates to tolerance = 1e-8",
         ],
     );
     assert!(parse(
         "fig4a.toml",
-        &fig4a_with("step = 1e-5", "step = 1e-5\ntolerance = 1e-10")
+        &fig4a_with("step = 1e-5", "step = 1e-5\ntolerance = 1e-8")
     )
     .is_ok());
 }
