@@ -960,7 +960,9 @@ impl Simulation for Transverse {
         let start = self.t;
         let t_end = start + h;
         let at_start = self.work;
-        let mut done = self.read_ahead(t_end);
+        // The step taken ahead that the call read to its end, which the next goes on from.
+        let mut behind = None;
+        let mut done = self.read_ahead(t_end, &mut behind);
         if self.t != start && !done {
             // The call goes on from the end of the step taken ahead.
             self.p.set_time(self.t);
@@ -983,8 +985,8 @@ impl Simulation for Transverse {
                 t_end
             };
             let next = if next > t { next } else { t_end };
-            if next == t_end && self.look_ahead(t, t_end, boundary)? {
-                done = self.read_ahead(t_end);
+            if next == t_end && self.look_ahead((t, t_end, boundary), behind.take())? {
+                done = self.read_ahead(t_end, &mut behind);
                 if !done {
                     // The step ended short of the call (on a kink): on from its end.
                     (origin, t) = (self.t, self.t);
@@ -992,6 +994,7 @@ impl Simulation for Transverse {
                 }
                 continue;
             }
+            behind = None;
             self.substep(origin, (t, next), vd)?;
             t = next;
         }

@@ -16,7 +16,7 @@
 
 mod ahead;
 
-pub use ahead::{StepAhead, SAVED_LEN as STEP_AHEAD_SAVED};
+pub use ahead::{Carry, StepAhead, CARRY_SAVED, SAVED_LEN as STEP_AHEAD_SAVED};
 
 use super::narrow::{Narrow, Verdict, Watch};
 use super::stiffness::StiffnessTest;
@@ -391,6 +391,24 @@ impl Dense {
     }
 }
 
+/// A step's dense output read at a fraction of the step: contd5's ([`Dense`]), or the quintic
+/// of a step taken ahead ([`StepAhead`]), which foretells a kink after it.
+trait Reading {
+    fn read(&self, theta: f64, len: usize, out: &mut [f64; MAX_DIM]);
+}
+
+impl Reading for Dense {
+    fn read(&self, theta: f64, len: usize, out: &mut [f64; MAX_DIM]) {
+        self.at(theta, len, out);
+    }
+}
+
+impl Reading for &StepAhead {
+    fn read(&self, theta: f64, len: usize, out: &mut [f64; MAX_DIM]) {
+        self.at_theta(theta, len, out);
+    }
+}
+
 /// e^(x c_s) for the stages' nodes c_s, from one exponential: every node is a multiple of 1/90.
 fn stage_factors(x: f64) -> [f64; 7] {
     let q = (x / 90.0).exp();
@@ -411,6 +429,24 @@ fn stage_factors(x: f64) -> [f64; 7] {
 /// (the step started on the switch) does not count.
 pub(super) fn crossed(old: f64, new: f64) -> bool {
     old != 0.0 && (new == 0.0 || (new > 0.0) != (old > 0.0))
+}
+
+/// A run that stops at the end of the first accepted step reaching `past`, holding the step
+/// and what the next may go on with in `slot`; it goes on `from` the last step taken ahead,
+/// where given ([`Dopri5::step_ahead`]).
+struct AheadRun<'a> {
+    past: f64,
+    from: Option<(&'a Carry, &'a StepAhead)>,
+    slot: &'a mut Option<(StepAhead, Carry)>,
+}
+
+/// The last step taken ahead, as the run going on from its end sees it: its start and length
+/// in this run's time, its switches at the start, and its quintic.
+struct Carried<'a> {
+    t_prev: f64,
+    h_prev: f64,
+    sw_prev: [f64; MAX_SWITCHES],
+    step: &'a StepAhead,
 }
 
 impl Dopri5 {
@@ -594,21 +630,25 @@ impl Dopri5 {
     /// The coupled states at `t + theta h` on the dense output, all the switching functions
     /// read (the quadratures after them are NaN in debug builds, to catch one that reads them).
     #[inline]
-    fn coupled_on<S: Switching + ?Sized>(ode: &S, dense: &Dense, theta: f64) -> [f64; MAX_DIM] {
+    fn coupled_on<S: Switching + ?Sized, R: Reading>(
+        ode: &S,
+        dense: &R,
+        theta: f64,
+    ) -> [f64; MAX_DIM] {
         let mut state = [0.0; MAX_DIM];
         let coupled = ode.coupled().min(MAX_DIM);
         if cfg!(debug_assertions) {
             state[coupled..].fill(f64::NAN);
         }
-        dense.at(theta, coupled, &mut state);
+        dense.read(theta, coupled, &mut state);
         state
     }
 
     /// Switching function `i` at `t + theta h` on the dense output.
-    fn switch_on<S: Switching + ?Sized>(
+    fn switch_on<S: Switching + ?Sized, R: Reading>(
         ode: &S,
         t: f64,
-        dense: &Dense,
+        dense: &R,
         h: f64,
         i: usize,
         theta: f64,
@@ -641,25 +681,21 @@ impl Dopri5 {
         ode.narrow(&sw).map_or(f64::INFINITY, |e| e.r)
     }
 
-    /// The first switch the last accepted step (from `t_prev`, length `h_prev`, start state
-    /// `y_prev`, stages in `tr`) predicts to change sign within the coming step `h`, and the
-    /// step that ends on it. A line through the switch values at the ends of the last step
+    /// The first switch the last accepted step (from `t_prev`, length `h_prev`, its switches
+    /// at the start `sw_prev`; its dense output `reading`, or from `build` when first needed)
+    /// predicts to change sign within the coming step `h`, and the step that ends on it. A line through the switch values at the ends of the last step
     /// picks the candidates (free); the dense output extrapolated past the step places them,
     /// nearest along the line first, so that each later candidate costs one evaluation at the
     /// zero found so far (switches in a cluster, as the points inside a Stribeck band, are
     /// due in the same step).
-    #[allow(clippy::too_many_arguments)]
-    fn predict<S: Switching + ?Sized>(
+    fn predict<S: Switching + ?Sized, R: Reading>(
         ode: &S,
-        t_prev: f64,
-        h_prev: f64,
-        y_prev: &[f64; MAX_DIM],
-        tr: &Trial,
-        sw_prev: &[f64; MAX_SWITCHES],
-        sw_now: &[f64; MAX_SWITCHES],
-        count: usize,
+        (t_prev, h_prev, sw_prev): (f64, f64, &[f64; MAX_SWITCHES]),
+        (reading, build): (&mut Option<R>, impl FnOnce() -> R),
+        (sw_now, count): (&[f64; MAX_SWITCHES], usize),
         h: f64,
     ) -> Option<(usize, f64)> {
+        let mut build = Some(build);
         let r = h / h_prev;
         // The candidates heading for zero and due within 1.5 steps along the line, by when.
         let mut due = [(0usize, 0.0f64); MAX_SWITCHES];
@@ -677,9 +713,7 @@ impl Dopri5 {
         }
         let due = &mut due[..len];
         due.sort_unstable_by(|a, b| a.1.total_cmp(&b.1));
-        let coupled = ode.coupled().min(MAX_DIM);
         let mut best: Option<(usize, f64)> = None;
-        let mut dense = None;
         // The fraction of the coming step searched: all of it, then up to the first zero found.
         let mut reach = 1.0;
         for &(i, line) in due.iter() {
@@ -689,8 +723,10 @@ impl Dopri5 {
                 // Due well after the zero found (and the rest later still).
                 break;
             }
-            let d =
-                dense.get_or_insert_with(|| Dense::new(coupled, &y_prev[..coupled], tr, h_prev));
+            let d = match (reading.is_some(), build.take()) {
+                (false, Some(build)) => reading.insert(build()),
+                _ => reading.as_mut()?,
+            };
             let switch_at =
                 |x: f64| Self::switch_on(ode, t_prev, d, h_prev, i, 1.0 + x * reach * r);
             let s1 = sw_now[i];
@@ -756,24 +792,34 @@ impl Dopri5 {
     }
 
     /// Integrates from `t0` towards `t1` up to the end of the first step that reaches `past`
-    /// (in `(t0, t1]`), the steps as the controller proposes them. Leaves `y` at that step's
-    /// end and returns the end (`t1` itself where the step reached it) and the step, to be read
-    /// inside to its order ([`StepAhead`]; two right-hand sides more).
+    /// (in `(t0, t1]`), the steps as the controller proposes them; `from`, the last step taken
+    /// ahead and what it left, where this one starts at its end (`y` its end state, `t0` its
+    /// end in this run's time): its last stage is then the first, and it foretells a kink.
+    /// Leaves `y` at that step's end and returns the end (`t1` itself where the step reached
+    /// it), the step, to be read inside to its order ([`StepAhead`]; two right-hand sides
+    /// more), and what the next step ahead may go on with.
     pub fn step_ahead<S: Switching + ?Sized>(
         &mut self,
         ode: &S,
         (t0, past, t1): (f64, f64, f64),
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(f64, StepAhead), String> {
-        let mut step = None;
+        from: Option<(&Carry, &StepAhead)>,
+    ) -> Result<(f64, StepAhead, Carry), String> {
+        let mut slot = None;
         let end = if t1 > t0 {
-            self.run(ode, (t0, t1), y, work, None, Some((past, &mut step)))?
+            let ahead = AheadRun {
+                past,
+                from,
+                slot: &mut slot,
+            };
+            self.run(ode, (t0, t1), y, work, None, Some(ahead))?
         } else {
             t0
         };
-        let step = step.ok_or_else(|| format!("dopri5: no step to take ahead in [{t0}, {t1}]"))?;
-        Ok((end, step))
+        let (step, carry) =
+            slot.ok_or_else(|| format!("dopri5: no step to take ahead in [{t0}, {t1}]"))?;
+        Ok((end, step, carry))
     }
 
     /// Like [`Dopri5::integrate_switched`], but stops at the end of the first step that ends on
@@ -793,8 +839,7 @@ impl Dopri5 {
     }
 
     /// The integration; with `stop` (the largest |y[0]| met so far), up to the first kink it
-    /// stops at; with `ahead` (a time and a place for a step), up to the end of the first
-    /// accepted step that reaches that time, which it holds.
+    /// stops at; with `ahead`, up to the end of the first accepted step that reaches its time.
     fn run<S: Switching + ?Sized>(
         &mut self,
         ode: &S,
@@ -802,7 +847,7 @@ impl Dopri5 {
         y: &mut [f64],
         work: &mut Work,
         mut stop: Option<&mut f64>,
-        mut ahead: Option<(f64, &mut Option<StepAhead>)>,
+        mut ahead: Option<AheadRun>,
     ) -> Result<f64, String> {
         let n = ode.dim();
         if n > MAX_DIM || y.len() < n {
@@ -828,9 +873,15 @@ impl Dopri5 {
         let span = t1 - t0;
         // Steps shorter than this are round-off in t.
         let h_tiny = 16.0 * f64::EPSILON * t0.abs().max(t1.abs()).max(span);
+        let from = ahead.as_ref().and_then(|a| a.from);
         let mut k1 = [0.0; MAX_DIM];
-        ode.rhs(t0, &y[..n], &mut k1[..n]);
-        work.rhs_evaluations += 1;
+        match from {
+            Some((carry, _)) => k1 = carry.k1,
+            None => {
+                ode.rhs(t0, &y[..n], &mut k1[..n]);
+                work.rhs_evaluations += 1;
+            }
+        }
         if self.h <= 0.0 {
             self.h = self.initial_step(&y[..n], &k1[..n], span);
         }
@@ -839,7 +890,13 @@ impl Dopri5 {
         let mut sw_new = [0.0; MAX_SWITCHES];
         // The switches at the end of a step cut short on a kink.
         let mut sw_kink = [0.0; MAX_SWITCHES];
-        let (mut count, mut sigma) = ode.switches_and_decay(t, &y[..n], &mut sw_old);
+        let (mut count, mut sigma) = match from {
+            Some((carry, _)) => {
+                sw_old = carry.sw;
+                (carry.count, carry.sigma)
+            }
+            None => ode.switches_and_decay(t, &y[..n], &mut sw_old),
+        };
         let mut steps = 0u64;
         let mut tr = Trial::new();
         let mut retry = Trial::new();
@@ -849,6 +906,13 @@ impl Dopri5 {
         // The last accepted step (its start, length, start state and switch values; its stages
         // stay in `tr` until the next trial), from which a coming kink is extrapolated.
         let mut prev: Option<(f64, f64, [f64; MAX_DIM], [f64; MAX_SWITCHES])> = None;
+        // Before the first: the last step taken ahead, its time counted in this run's.
+        let mut carried = from.map(|(carry, step)| Carried {
+            t_prev: step.t - carry.end + t0,
+            h_prev: step.h,
+            sw_prev: carry.sw_prev,
+            step,
+        });
         let mut watch = Watch::default();
         let trend = ode.decay_follows_trend();
         // How fast the decay rate changed over the last accepted step (0: not known, or not
@@ -871,14 +935,24 @@ impl Dopri5 {
             // A kink the last step's dense output says lies within this step: end the trial on
             // it, instead of a trial across it and a retake.
             let mut predicted = None;
-            if let Some((t_prev, h_prev, y_prev, sw_prev)) = &prev {
-                if let Some((i, h_kink)) = Self::predict(
-                    ode, *t_prev, *h_prev, y_prev, &tr, sw_prev, &sw_old, count, h,
-                ) {
-                    if h_kink > h_tiny && h_kink < h {
-                        h = h_kink;
-                        predicted = Some(i);
-                    }
+            let foretold = match (&prev, &carried) {
+                (Some((t_prev, h_prev, y_prev, sw_prev)), _) => {
+                    let build = || Dense::new(coupled, &y_prev[..coupled], &tr, *h_prev);
+                    let last = (*t_prev, *h_prev, sw_prev);
+                    Self::predict(ode, last, (&mut None, build), (&sw_old, count), h)
+                }
+                // A step taken ahead goes on from the last one's end: that step foretells.
+                (None, Some(c)) => {
+                    let last = (c.t_prev, c.h_prev, &c.sw_prev);
+                    let reading = (&mut Some(c.step), || c.step);
+                    Self::predict(ode, last, reading, (&sw_old, count), h)
+                }
+                (None, None) => None,
+            };
+            if let Some((i, h_kink)) = foretold {
+                if h_kink > h_tiny && h_kink < h {
+                    h = h_kink;
+                    predicted = Some(i);
                 }
             }
             let y_start: [f64; MAX_DIM] = {
@@ -944,6 +1018,7 @@ impl Dopri5 {
                 } else {
                     work.rejected += 1;
                     prev = None;
+                    carried = None;
                     let fac = (SAFETY * retry.err.powf(-0.2)).clamp(0.1, 0.9);
                     self.h = h_kink * fac;
                     if self.h < h_tiny {
@@ -954,6 +1029,7 @@ impl Dopri5 {
             } else if tr.err > 1.0 {
                 work.rejected += 1;
                 prev = None;
+                carried = None;
                 let fac = (SAFETY * tr.err.powf(-0.2)).clamp(0.1, 0.9);
                 self.h = h * fac;
                 if self.h < h_tiny {
@@ -977,6 +1053,7 @@ impl Dopri5 {
                         Verdict::Retake(h_short) => {
                             work.rejected += 1;
                             prev = None;
+                            carried = None;
                             self.h = h_short;
                             continue;
                         }
@@ -992,6 +1069,7 @@ impl Dopri5 {
                     .record(h_lambda, tr.sigma * h_taken, t + h_taken);
             }
             prev = Some((t, h_taken, y_start, sw_start));
+            carried = None;
             t = if last && full { t1 } else { t + h_taken };
             y[..n].copy_from_slice(&tr.y_new[..n]);
             if y[..n].iter().any(|v| !v.is_finite()) {
@@ -1048,15 +1126,18 @@ impl Dopri5 {
                     return Ok(t);
                 }
             }
-            if let Some((past, slot)) = &mut ahead {
-                if t >= *past {
-                    **slot = Some(StepAhead::new(
-                        ode,
-                        (t_start, &y_start[..n]),
-                        &tr,
-                        h_taken,
-                        work,
-                    ));
+            if let Some(a) = &mut ahead {
+                if t >= a.past {
+                    let step = StepAhead::new(ode, (t_start, &y_start[..n]), &tr, h_taken, work);
+                    let carry = Carry {
+                        end: t,
+                        k1,
+                        sw: sw_old,
+                        count,
+                        sigma,
+                        sw_prev: sw_start,
+                    };
+                    *a.slot = Some((step, carry));
                     return Ok(t);
                 }
             }

@@ -9,7 +9,7 @@
 use super::{axial, band_points, Drive, Equations, Solver, Transverse, Q};
 use crate::models::ramp::Ramp;
 use crate::solve::adaptive::Adaptive;
-use crate::solve::dopri::{StepAhead, STEP_AHEAD_SAVED};
+use crate::solve::dopri::{Carry, StepAhead, CARRY_SAVED, STEP_AHEAD_SAVED};
 use crate::solve::MAX_DIM;
 
 /// A dopri5 step taken past the communication point, with where the integration goes on from.
@@ -23,6 +23,8 @@ pub(super) struct Ahead {
     y_end: [f64; MAX_DIM],
     /// The force integral q up to the last point read, which the period's mean holds.
     q_read: f64,
+    /// What the next step taken ahead, from this one's end, goes on with.
+    carry: Carry,
 }
 
 /// The fewest communication steps a step taken ahead must hold: reading costs its two
@@ -30,7 +32,7 @@ pub(super) struct Ahead {
 const CALLS_AHEAD: f64 = 2.0;
 
 /// How many numbers a step taken ahead adds to a saved state, after a flag.
-pub(super) const SAVED: usize = 3 + MAX_DIM + STEP_AHEAD_SAVED;
+pub(super) const SAVED: usize = 3 + MAX_DIM + STEP_AHEAD_SAVED + CARRY_SAVED;
 
 impl Transverse {
     /// Whether calls may read steps taken ahead: dopri5, with the drive prescribed.
@@ -41,8 +43,9 @@ impl Transverse {
 
     /// Answers a call ending at `t_end` from the step taken ahead, if there is one: inside it,
     /// from its interpolant (true); at or past its end, by going on from there (true if `t_end`
-    /// is its end, to round-off; false if the call must go on from `self.t`).
-    pub(super) fn read_ahead(&mut self, t_end: f64) -> bool {
+    /// is its end, to round-off; false if the call must go on from `self.t`), the step then
+    /// left in `behind` for the next to go on from.
+    pub(super) fn read_ahead(&mut self, t_end: f64, behind: &mut Option<Ahead>) -> bool {
         let Some(ahead) = &mut self.ahead else {
             return false;
         };
@@ -57,8 +60,6 @@ impl Transverse {
             self.t = t_end;
             return true;
         }
-        let ahead = *ahead;
-        self.ahead = None;
         self.y = ahead.y_end;
         if self.trim.mean {
             self.mean.add(ahead.y_end[Q] - ahead.q_read, ahead.end);
@@ -68,14 +69,20 @@ impl Transverse {
         } else {
             ahead.end
         };
+        *behind = self.ahead.take();
         self.t == t_end
     }
 
     /// Where steps may be taken ahead and dopri5's proposed step from `t` holds
     /// [`CALLS_AHEAD`] calls ending at `t_end`, takes that step (not past the period's
-    /// `boundary`, when the mean is read) and holds it for [`Transverse::read_ahead`] (true).
-    /// False, with nothing changed, where it may not.
-    pub(super) fn look_ahead(&mut self, t: f64, t_end: f64, boundary: f64) -> Result<bool, String> {
+    /// `boundary`, when the mean is read) and holds it for [`Transverse::read_ahead`] (true);
+    /// it goes on from `behind`, the last step taken ahead, where that ended at `t`. False,
+    /// with nothing changed, where it may not.
+    pub(super) fn look_ahead(
+        &mut self,
+        (t, t_end, boundary): (f64, f64, f64),
+        behind: Option<Ahead>,
+    ) -> Result<bool, String> {
         let Drive::Prescribed(vd) = self.drive else {
             return Ok(false);
         };
@@ -87,6 +94,9 @@ impl Transverse {
         if d.h.min(d.h_max).min(reach) < CALLS_AHEAD * (t_end - t) {
             return Ok(false);
         }
+        // Going on from the last step taken ahead, where it ended.
+        let behind = behind.filter(|b| b.end == t);
+        let from = behind.as_ref().map(|b| (&b.carry, &b.step));
         // The equations count time from the step's start.
         let mut p = self.p;
         p.set_time(t);
@@ -95,22 +105,19 @@ impl Transverse {
             rate: 0.0,
         };
         self.y[Q] = 0.0;
-        let (end, step) = if self.trim.axial {
+        let (end, step, carry) = if self.trim.axial {
             let axial = axial::Axial {
                 p: &p,
                 vd,
                 dim: self.trim.dim(),
                 band_points: points,
             };
-            d.step_ahead(&axial, (0.0, t_end - t, reach), &mut self.y, &mut self.work)?
+            let span = (0.0, t_end - t, reach);
+            d.step_ahead(&axial, span, &mut self.y, &mut self.work, from)?
         } else {
             let planar = Equations::new(&p, vd, points);
-            d.step_ahead(
-                &planar,
-                (0.0, t_end - t, reach),
-                &mut self.y,
-                &mut self.work,
-            )?
+            let span = (0.0, t_end - t, reach);
+            d.step_ahead(&planar, span, &mut self.y, &mut self.work, from)?
         };
         // A step that reached the period's boundary ends on it, to the bit.
         let end_time = if end == boundary - t {
@@ -127,6 +134,7 @@ impl Transverse {
             end: end_time,
             y_end: self.y,
             q_read: 0.0,
+            carry,
         });
         Ok(true)
     }
@@ -139,6 +147,7 @@ impl Transverse {
                 out.extend_from_slice(&[1.0, a.origin, a.end, a.q_read]);
                 out.extend_from_slice(&a.y_end);
                 a.step.write(out);
+                a.carry.write(out);
             }
         }
     }
@@ -152,16 +161,17 @@ impl Transverse {
             [flag, origin, end, q_read, rest @ ..]
                 if *flag == 1.0 && rest.len() == SAVED - 3 && self.looks_ahead() =>
             {
-                let (y, step) = rest.split_at(MAX_DIM);
-                let step = StepAhead::read(step).ok_or_else(refused)?;
+                let (y, rest) = rest.split_at(MAX_DIM);
+                let (step, carry) = rest.split_at(STEP_AHEAD_SAVED);
                 let mut y_end = [0.0; MAX_DIM];
                 y_end.copy_from_slice(y);
                 Some(Ahead {
-                    step,
+                    step: StepAhead::read(step).ok_or_else(refused)?,
                     origin: *origin,
                     end: *end,
                     y_end,
                     q_read: *q_read,
+                    carry: Carry::read(carry).ok_or_else(refused)?,
                 })
             }
             _ => return Err(refused()),
@@ -235,9 +245,9 @@ mod tests {
         }
     }
 
-    /// A state saved while a step taken ahead is being read holds that step: restored, the run
-    /// goes on to the same bits. A state that says it holds one where this simulation takes
-    /// none is refused.
+    /// A state saved while a step taken ahead is being read holds that step and what the next
+    /// goes on with: restored, the run goes on to the same bits as the one that saved it. A
+    /// state that says it holds one where this simulation takes none is refused.
     #[test]
     fn a_state_saved_inside_a_step_taken_ahead_replays_the_motion() {
         let v = values("split", 1e-8);

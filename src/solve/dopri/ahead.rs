@@ -9,7 +9,7 @@
 //! then multiplies by h. The quintic matches the step's ends, the derivatives there and those
 //! two. With the integrating factor it is the quintic of u = e^(sigma tau) (y - c), as contd5's.
 
-use super::{Decaying, Dense, Switching, Trial, MAX_DECAYING};
+use super::{Decaying, Dense, Switching, Trial, MAX_DECAYING, MAX_SWITCHES};
 use crate::solve::{Work, MAX_DIM};
 
 /// The interior nodes whose derivatives the quintic matches.
@@ -39,6 +39,55 @@ pub struct StepAhead {
     sigma_h: f64,
     decaying: Decaying,
     shift: [f64; MAX_DECAYING],
+}
+
+/// What a step taken ahead leaves for the next, which starts at its end: the derivative there
+/// (the next step's first stage), the switching functions there (a kink the step ended on
+/// marked as crossed), how many, and the decay rate; and the switches at the step's start,
+/// which with its quintic foretell a kink in the next step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Carry {
+    /// The step's end, in its run's time.
+    pub(super) end: f64,
+    pub(super) k1: [f64; MAX_DIM],
+    pub(super) sw: [f64; MAX_SWITCHES],
+    pub(super) count: usize,
+    pub(super) sigma: f64,
+    pub(super) sw_prev: [f64; MAX_SWITCHES],
+}
+
+/// How many numbers [`Carry::write`] writes.
+pub const CARRY_SAVED: usize = 3 + MAX_DIM + 2 * MAX_SWITCHES;
+
+impl Carry {
+    /// Appends [`CARRY_SAVED`] numbers that [`Carry::read`] takes back to the same bits.
+    pub fn write(&self, out: &mut Vec<f64>) {
+        out.extend_from_slice(&[self.end, self.count as f64, self.sigma]);
+        out.extend_from_slice(&self.k1);
+        out.extend_from_slice(&self.sw);
+        out.extend_from_slice(&self.sw_prev);
+    }
+
+    /// What [`Carry::write`] wrote; None where the numbers cannot be one.
+    pub fn read(saved: &[f64]) -> Option<Self> {
+        if saved.len() != CARRY_SAVED {
+            return None;
+        }
+        let count = saved[1];
+        if !(count >= 0.0 && count <= MAX_SWITCHES as f64 && count.fract() == 0.0) {
+            return None;
+        }
+        let (k1, rest) = saved[3..].split_at(MAX_DIM);
+        let (sw, sw_prev) = rest.split_at(MAX_SWITCHES);
+        Some(Carry {
+            end: saved[0],
+            count: count as usize,
+            sigma: saved[2],
+            k1: k1.try_into().ok()?,
+            sw: sw.try_into().ok()?,
+            sw_prev: sw_prev.try_into().ok()?,
+        })
+    }
 }
 
 /// How many numbers [`StepAhead::write`] writes.
@@ -117,9 +166,13 @@ impl StepAhead {
 
     /// The states at time `t` (inside the step) into `out`.
     pub fn at(&self, t: f64, out: &mut [f64; MAX_DIM]) {
-        let theta = (t - self.t) / self.h;
+        self.at_theta((t - self.t) / self.h, self.n, out);
+    }
+
+    /// The first `len` states at `t + theta h` into `out` (past the step's end: extrapolated).
+    pub(super) fn at_theta(&self, theta: f64, len: usize, out: &mut [f64; MAX_DIM]) {
         let c = &self.coefficients;
-        for j in 0..self.n {
+        for j in 0..len.min(self.n) {
             out[j] = c[0][j]
                 + theta
                     * (c[1][j]
@@ -223,8 +276,14 @@ mod tests {
         let n = ode.dim();
         let mut y = [0.0; MAX_DIM];
         y[..n].copy_from_slice(y0);
-        let (end, step) = d
-            .step_ahead(ode, (t0, t0 + h, t0 + h), &mut y, &mut Work::default())
+        let (end, step, _) = d
+            .step_ahead(
+                ode,
+                (t0, t0 + h, t0 + h),
+                &mut y,
+                &mut Work::default(),
+                None,
+            )
             .unwrap();
         assert!(end == t0 + h && (step.end() - end).abs() < 1e-12);
         let mut read = [0.0; MAX_DIM];
@@ -272,14 +331,20 @@ mod tests {
         }
     }
 
-    /// What [`StepAhead::write`] writes, [`StepAhead::read`] takes back to the same step;
-    /// numbers that cannot be one are refused.
+    /// What [`StepAhead::write`] and [`Carry::write`] write, their `read` takes back to the
+    /// same step and carry; numbers that cannot be one are refused.
     #[test]
     fn a_written_step_reads_back() {
         let mut d = Dopri5::new(1e-6, [1e-6; MAX_DIM], 1.0);
         let mut y = [0.01; MAX_DIM];
-        let (_, step) = d
-            .step_ahead(&Relaxing, (0.3, 0.3, 1.0), &mut y, &mut Work::default())
+        let (_, step, carry) = d
+            .step_ahead(
+                &Relaxing,
+                (0.3, 0.3, 1.0),
+                &mut y,
+                &mut Work::default(),
+                None,
+            )
             .unwrap();
         assert!(step.sigma_h > 0.0);
         let mut saved = Vec::new();
@@ -290,5 +355,12 @@ mod tests {
         bad[2] = 1.5;
         assert_eq!(StepAhead::read(&bad), None);
         assert_eq!(StepAhead::read(&saved[1..]), None);
+
+        let mut saved = Vec::new();
+        carry.write(&mut saved);
+        assert_eq!(saved.len(), CARRY_SAVED);
+        assert_eq!(Carry::read(&saved), Some(carry));
+        saved[1] = -1.0;
+        assert_eq!(Carry::read(&saved), None);
     }
 }
