@@ -683,11 +683,12 @@ impl Dopri5 {
 
     /// The first switch the last accepted step (from `t_prev`, length `h_prev`, its switches
     /// at the start `sw_prev`; its dense output `reading`, or from `build` when first needed)
-    /// predicts to change sign within the coming step `h`, and the step that ends on it. A line through the switch values at the ends of the last step
-    /// picks the candidates (free); the dense output extrapolated past the step places them,
-    /// nearest along the line first, so that each later candidate costs one evaluation at the
-    /// zero found so far (switches in a cluster, as the points inside a Stribeck band, are
-    /// due in the same step).
+    /// predicts to change sign within the coming step `h`, and the step that ends on it. A
+    /// line through the switch values at the ends of the last step picks the candidates
+    /// (free); the dense output extrapolated past the step places them, nearest along the line
+    /// first, so that each later candidate costs one evaluation at the zero found so far
+    /// (switches in a cluster, as the points inside a Stribeck band, are due in the same
+    /// step).
     fn predict<S: Switching + ?Sized, R: Reading>(
         ode: &S,
         (t_prev, h_prev, sw_prev): (f64, f64, &[f64; MAX_SWITCHES]),
