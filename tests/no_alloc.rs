@@ -206,6 +206,21 @@ fn changing_step_sizes_do_not_allocate() {
     assert_rounds_do_not_allocate("DriveTrain-steps", &mut fmu, &outputs, &master);
 }
 
+/// Communication steps far shorter than dopri5's: TransverseFriction reads steps taken ahead,
+/// takes the next from the end of the last, and its rollback copy holds the step.
+#[test]
+fn steps_taken_ahead_do_not_allocate() {
+    let t = &transverse::TABLE;
+    let mut fmu = full_model(t, "T-ahead", &[]);
+    let master = Master {
+        inputs: Vec::new(),
+        derivatives: None,
+        steps: &[1e-6, 3e-7],
+    };
+    let outputs = real_outputs(&t.variables.iter().collect::<Vec<_>>());
+    assert_rounds_do_not_allocate("T-ahead", &mut fmu, &outputs, &master);
+}
+
 /// Every variant's trimmed FMU: the same library, instantiated with the variant's GUID and a
 /// resource location holding the file as resources/variant.toml, stepped at the variant's step.
 #[test]
