@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Runs every test: formatting and lints, the Rust unit and integration tests (one of which loads
-# the packed FMU through the `fmi` crate), the call-sequence fuzzer once more under valgrind's
-# memcheck, then the Python tests against fmu-out/: fmpy, the co-simulation engines libcosim and
-# ecos, and a C host natively and, on the win64 libraries, under wine.
+# Runs every test: formatting, lints and the API documentation's links, the Rust unit and
+# integration tests (one of which loads the packed FMU through the `fmi` crate), the call-sequence
+# fuzzer once more under valgrind's memcheck, then the Python tests against fmu-out/: fmpy, the
+# co-simulation engines libcosim and ecos, and a C host natively and, on the win64 libraries,
+# under wine.
 # Installs what it needs with apt (below) and a .venv with fmpy, the engines, and cargo-zigbuild
 # with ziglang (the linux64 library for glibc 2.17).
 set -euo pipefail
@@ -62,6 +63,8 @@ stage "cargo test, linted by clippy"
 # packs the FMUs below (the release build would compile everything again, with fat LTO). Before
 # that packing, which refreshes modelDescription/: a test checks the committed copy.
 linted cargo test --profile testing
+stage "cargo doc, warnings denied (broken links in the API documentation)"
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --profile testing --quiet
 BIN=target/testing/friction-fmu
 stage "fuzzing under valgrind memcheck (invalid reads and writes, use after free)"
 FUZZ_BIN=$(linted cargo test --profile testing --test fuzz_calls --no-run 2>&1 | grep -o 'target/testing/deps/fuzz_calls-[0-9a-f]*' | head -1)
