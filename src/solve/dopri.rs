@@ -244,6 +244,19 @@ impl Trial {
         }
     }
 
+    /// The first `n` states at the step's start `y` and end, as the stages integrate them: for
+    /// the decaying components, u = e^(sigma tau) (y - c) (at the start, y - c).
+    fn ends_of_u(&self, n: usize, y: &[f64]) -> ([f64; MAX_DIM], [f64; MAX_DIM]) {
+        let mut start = [0.0; MAX_DIM];
+        start[..n].copy_from_slice(&y[..n]);
+        let mut end = self.y_new;
+        for (m, j) in self.decaying.iter().enumerate() {
+            start[j] -= self.shift[m];
+            end[j] = (end[j] - self.shift[m]) * self.g[6];
+        }
+        (start, end)
+    }
+
     /// The derivative at the step's end, the next step's first stage.
     fn last_stage(&self) -> [f64; MAX_DIM] {
         let mut k = self.k[6];
@@ -288,13 +301,7 @@ impl Dense {
     fn new(n: usize, y: &[f64], tr: &Trial, h: f64) -> Self {
         let mut r = [[0.0; MAX_DIM]; 5];
         // The interpolant of u = e^(sigma tau) (y - c) for the decaying components.
-        let mut y0 = [0.0; MAX_DIM];
-        y0[..n].copy_from_slice(&y[..n]);
-        let mut y_new = tr.y_new;
-        for (m, j) in tr.decaying.iter().enumerate() {
-            y0[j] -= tr.shift[m];
-            y_new[j] = (y_new[j] - tr.shift[m]) * tr.g[6];
-        }
+        let (y0, y_new) = tr.ends_of_u(n, y);
         for j in 0..n {
             let r2 = y_new[j] - y0[j];
             let r3 = h * tr.k[0][j] - r2;
@@ -1226,20 +1233,20 @@ mod tests {
     const ABS_COS: AbsCos = AbsCos { decay: 0.0 };
 
     /// y' = forcing(t) - lambda y, with the decay marked for the integrating factor.
-    struct Relax {
+    pub(super) struct Relax {
         lambda: f64,
         forcing: fn(f64) -> f64,
     }
     impl Relax {
         /// forcing cos t from y(0) = 0: y = (lambda cos t + sin t - lambda e^(-lambda t)) /
         /// (lambda^2 + 1).
-        fn cosine(lambda: f64) -> Self {
+        pub(super) fn cosine(lambda: f64) -> Self {
             Relax {
                 lambda,
                 forcing: f64::cos,
             }
         }
-        fn exact(&self, t: f64) -> f64 {
+        pub(super) fn exact(&self, t: f64) -> f64 {
             let l = self.lambda;
             (l * t.cos() + t.sin() - l * (-l * t).exp()) / (l * l + 1.0)
         }

@@ -127,13 +127,7 @@ impl StepAhead {
             }
         }
         work.rhs_evaluations += 2;
-        let mut u0 = [0.0; MAX_DIM];
-        u0[..n].copy_from_slice(&y[..n]);
-        let mut u1 = tr.y_new;
-        for (m, j) in tr.decaying.iter().enumerate() {
-            u0[j] -= tr.shift[m];
-            u1[j] = (u1[j] - tr.shift[m]) * tr.g[6];
-        }
+        let (u0, u1) = tr.ends_of_u(n, y);
         let mut coefficients = [[0.0; MAX_DIM]; 6];
         for j in 0..n {
             let data = [
@@ -235,37 +229,10 @@ impl StepAhead {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{Dopri5, Switching, MAX_SWITCHES};
+    use super::super::tests::Relax;
+    use super::super::{Dopri5, Switching};
     use super::*;
     use crate::solve::test_odes::Harmonic;
-    use crate::solve::Ode;
-
-    /// y' = -(30 + 20 t) y + sin t: a decay the integrating factor takes, at a rate that moves.
-    struct Relaxing;
-    impl Ode for Relaxing {
-        fn dim(&self) -> usize {
-            1
-        }
-        fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
-            dydt[0] = -(30.0 + 20.0 * t) * y[0] + t.sin();
-        }
-    }
-    impl Switching for Relaxing {
-        fn switches(&self, _t: f64, _y: &[f64], _out: &mut [f64; MAX_SWITCHES]) -> usize {
-            0
-        }
-        fn switches_and_decay(
-            &self,
-            t: f64,
-            _y: &[f64],
-            _out: &mut [f64; MAX_SWITCHES],
-        ) -> (usize, f64) {
-            (0, 30.0 + 20.0 * t)
-        }
-        fn decaying(&self) -> &[usize] {
-            &[0]
-        }
-    }
 
     /// The largest error at `t0 + 0.37 h` of one step of `h` from `(t0, y0)` read inside, against
     /// `exact` there.
@@ -293,8 +260,8 @@ mod tests {
             .fold(0.0, f64::max)
     }
 
-    /// Oracle: the closed form of the harmonic oscillator, and a run at rtol 1e-14 of a
-    /// relaxation under the integrating factor. Halving the step divides the error read inside
+    /// Oracle: the closed forms of the harmonic oscillator and of a forced relaxation under
+    /// the integrating factor. Halving the step divides the error read inside
     /// it by about 64 (2^6, a local error of order 6, as the step's own); contd5's order-4
     /// reading would fall by 32.
     #[test]
@@ -309,19 +276,12 @@ mod tests {
                 &[t.cos(), -t.sin()],
             )
         });
+        // y' = cos t - 30 y, the decay taken by the integrating factor.
+        let relax = Relax::cosine(30.0);
         let relaxing = steps.map(|h| {
             let h = 0.1 * h;
-            let mut exact = [0.01];
-            let mut d = Dopri5::new(1e-14, [1e-16; MAX_DIM], 1.0);
-            d.integrate_switched(
-                &Relaxing,
-                0.3,
-                0.3 + 0.37 * h,
-                &mut exact,
-                &mut Work::default(),
-            )
-            .unwrap();
-            read_error(&Relaxing, (0.3, &[0.01]), h, &exact)
+            let start = [relax.exact(0.3)];
+            read_error(&relax, (0.3, &start), h, &[relax.exact(0.3 + 0.37 * h)])
         });
         for errors in [harmonic, relaxing] {
             for pair in errors.windows(2) {
@@ -339,8 +299,9 @@ mod tests {
         let mut y = [0.01; MAX_DIM];
         let (_, step, carry) = d
             .step_ahead(
-                &Relaxing,
-                (0.3, 0.3, 1.0),
+                &Relax::cosine(30.0),
+                // Past the first steps, which the start's guess keeps short.
+                (0.3, 0.5, 1.0),
                 &mut y,
                 &mut Work::default(),
                 None,
