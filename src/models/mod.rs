@@ -23,6 +23,13 @@ pub trait Simulation: Send {
     /// Advances from the simulation's current time by `h > 0`, reading inputs from `values`.
     fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String>;
 
+    /// Advances by `h > 0` where the step ends inside one already taken and read, which cannot
+    /// fail (true); false, with nothing changed, where it does not. fmi2DoStep asks this first
+    /// and saves no rollback for a step it answers. The default: never.
+    fn read_inside(&mut self, _h: f64) -> bool {
+        false
+    }
+
     /// Writes every output variable into `values`, reading the inputs' current values there
     /// (outputs with direct feedthrough follow an input set after the last step).
     fn write_outputs(&self, values: &mut ValueSet);

@@ -1008,6 +1008,10 @@ impl Simulation for Transverse {
         self.check_motion(t_end, &self.y, (ff, s))
     }
 
+    fn read_inside(&mut self, h: f64) -> bool {
+        self.read_inside_ahead(h)
+    }
+
     fn write_outputs(&self, values: &mut ValueSet) {
         let (ff, ffx, ffy, s, beta) = self.forces();
         // Direct feedthrough of the hd term: Fd at t follows vd_in set at t.

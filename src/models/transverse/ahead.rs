@@ -73,6 +73,23 @@ impl Transverse {
         self.t == t_end
     }
 
+    /// Answers a call of `h` that ends inside the step taken ahead, short of its end (true): it
+    /// reads the interpolant and cannot fail. False, with nothing changed, otherwise.
+    pub(super) fn read_inside_ahead(&mut self, h: f64) -> bool {
+        let t_end = self.t + h;
+        match &self.ahead {
+            Some(a) if h > 0.0 && t_end < a.end - self.mean.slack(t_end) => {}
+            _ => return false,
+        }
+        // As do_step does: an input's derivative applies to one step, and vd is prescribed.
+        self.vd_rate = 0.0;
+        let mut behind = None;
+        let inside = self.read_ahead(t_end, &mut behind);
+        debug_assert!(inside && behind.is_none());
+        self.p.set_time(t_end);
+        true
+    }
+
     /// Where steps may be taken ahead and dopri5's proposed step from `t` holds
     /// [`CALLS_AHEAD`] calls ending at `t_end`, takes that step (not past the period's
     /// `boundary`, when the mean is read) and holds it for [`Transverse::read_ahead`] (true);
@@ -271,6 +288,34 @@ mod tests {
         rk4.set(vr::SOLVER, 2.0);
         let mut other = Transverse::new(&rk4, 0.0).unwrap();
         assert!(other.restore(&saved).is_err());
+    }
+
+    /// fmi2DoStep asks `read_inside` first and saves no rollback for a call it answers: those
+    /// calls go exactly as do_step's, and `read_inside` answers only calls inside a step taken
+    /// ahead, short of its end.
+    #[test]
+    fn reading_inside_goes_as_the_step_does() {
+        let v = values("split", 1e-8);
+        let mut stepped = Transverse::new(&v, 0.0).unwrap();
+        let mut sim = Transverse::new(&v, 0.0).unwrap();
+        let mut answered = 0;
+        for i in 0..3000 {
+            stepped.do_step(1e-6, &v).unwrap();
+            let end = sim.ahead.as_ref().map(|a| a.end);
+            if sim.read_inside(1e-6) {
+                answered += 1;
+                assert!(sim.time() < end.unwrap(), "call {i}");
+            } else {
+                sim.do_step(1e-6, &v).unwrap();
+            }
+            assert_eq!(sim.save(), stepped.save(), "call {i}");
+            assert_eq!(sim.forces(), stepped.forces(), "call {i}");
+            let rate = |s: &Transverse| s.output_derivative(vr::FFX, &v).unwrap();
+            assert_eq!(rate(&sim), rate(&stepped), "call {i}");
+        }
+        assert!(answered > 1500, "{answered} of 3000");
+        let mut no_ahead = Transverse::new(&v, 0.0).unwrap();
+        assert!(!no_ahead.read_inside(1e-6));
     }
 
     /// With the drive velocity an input, which may change at every call, no step is taken
