@@ -477,6 +477,8 @@ pub struct Transverse {
     pub fc: f64,
     start_time: f64,
     t: f64,
+    /// The state at t, except inside a step taken ahead, whose interpolant holds it there
+    /// ([`Transverse::state`]).
     y: [f64; MAX_DIM],
     /// The drive velocity held over the current step (input source).
     vd_held: f64,
@@ -795,10 +797,15 @@ impl Transverse {
 
     /// FF, FFx, FFy, s, beta now.
     pub fn forces(&self) -> (f64, f64, f64, f64, f64) {
+        self.forces_at(&self.state())
+    }
+
+    /// [`Transverse::forces`] with the state now, `y`, already at hand.
+    fn forces_at(&self, y: &[f64; MAX_DIM]) -> (f64, f64, f64, f64, f64) {
         match &self.solver {
             Solver::TwoPhase(tp) => tp.forces(),
             _ => {
-                let c = self.p.contact(0.0, &self.y);
+                let c = self.p.contact(0.0, y);
                 (c.ff, c.ffx(), c.ffy(), c.s, c.beta())
             }
         }
@@ -813,33 +820,35 @@ impl Transverse {
                 (ff, ffx, s)
             }
             _ => {
-                let c = self.p.contact(0.0, &self.y);
+                let c = self.p.contact(0.0, &self.state());
                 (c.ff, c.ffx(), c.s)
             }
         }
     }
 
     pub fn mean_ffx(&self) -> f64 {
-        self.mean.value(self.t, self.ff_ffx_s().1)
+        self.mean_now(&self.state())
+            .value(self.t, self.ff_ffx_s().1)
     }
 
     pub fn position(&self) -> (f64, f64) {
-        (self.y[X], self.y[Y])
+        let y = self.state();
+        (y[X], y[Y])
     }
 
     pub fn drive_force(&self) -> f64 {
-        self.p.drive_force(&self.y, self.vd())
+        self.p.drive_force(&self.state(), self.vd())
     }
 
     /// The energy the contact has dissipated since the start: the work done on it minus the
     /// energy kt s^2/2 stored in its deflection.
     pub fn dissipated_energy(&self) -> f64 {
-        self.dissipated_with(self.ff_ffx_s().2)
+        self.dissipated_with(&self.state(), self.ff_ffx_s().2)
     }
 
-    /// [`Transverse::dissipated_energy`] with the deflection s already at hand.
-    fn dissipated_with(&self, s: f64) -> f64 {
-        self.y[W] - 0.5 * self.p.law.kt * s * s
+    /// [`Transverse::dissipated_energy`] with the state `y` and the deflection s at hand.
+    fn dissipated_with(&self, y: &[f64; MAX_DIM], s: f64) -> f64 {
+        y[W] - 0.5 * self.p.law.kt * s * s
     }
 
     /// Refuses the state `y` at `t`, with its contact force FF and deflection s, where it is
@@ -1013,19 +1022,20 @@ impl Simulation for Transverse {
     }
 
     fn write_outputs(&self, values: &mut ValueSet) {
-        let (ff, ffx, ffy, s, beta) = self.forces();
+        let y = self.state();
+        let (ff, ffx, ffy, s, beta) = self.forces_at(&y);
         // Direct feedthrough of the hd term: Fd at t follows vd_in set at t.
         let vd = self.vd_now(values);
         values.set(vr::FF, ff);
         values.set(vr::FFX, ffx);
         values.set(vr::FFY, ffy);
-        values.set(vr::FD, self.p.drive_force(&self.y, vd));
-        values.set(vr::FFX_MEAN, self.mean.value(self.t, ffx));
-        values.set(vr::X, self.y[X]);
-        values.set(vr::Y, self.y[Y]);
+        values.set(vr::FD, self.p.drive_force(&y, vd));
+        values.set(vr::FFX_MEAN, self.mean_now(&y).value(self.t, ffx));
+        values.set(vr::X, y[X]);
+        values.set(vr::Y, y[Y]);
         values.set(vr::S, s);
         values.set(vr::BETA, beta);
-        values.set(vr::W_DISS, self.dissipated_with(s));
+        values.set(vr::W_DISS, self.dissipated_with(&y, s));
     }
 
     fn time(&self) -> f64 {
@@ -1118,10 +1128,11 @@ impl Simulation for Transverse {
     /// centred difference along the solution (`Transverse::force_rates`).
     fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {
         let vd = self.drive_velocity_now(values);
+        let y = self.state();
         let mut dydt = [0.0; MAX_DIM];
-        Equations::new(&self.p, vd, &[]).rhs(0.0, &self.y, &mut dydt);
-        let c = self.p.contact(0.0, &self.y);
-        let z = Vector2::new(self.y[ZX], self.y[ZY]);
+        Equations::new(&self.p, vd, &[]).rhs(0.0, &y, &mut dydt);
+        let c = self.p.contact(0.0, &y);
+        let z = Vector2::new(y[ZX], y[ZY]);
         // s' = e . z'; beta' from z = s (cos beta, -sin beta): beta' = -(z x z') / s^2 (0 on
         // an undeflected bristle, whose direction is that of the slip).
         let s_rate = c.e.dot(&c.zdot);
@@ -1137,12 +1148,13 @@ impl Simulation for Transverse {
             vr::S => s_rate,
             vr::BETA => beta_rate,
             vr::W_DISS => dydt[W] - self.p.law.kt * c.s * s_rate,
-            vr::FF => self.force_rates(&dydt)[0],
-            vr::FFX => self.force_rates(&dydt)[1],
-            vr::FFY => self.force_rates(&dydt)[2],
+            vr::FF => self.force_rates(&y, &dydt)[0],
+            vr::FFX => self.force_rates(&y, &dydt)[1],
+            vr::FFY => self.force_rates(&y, &dydt)[2],
             vr::FFX_MEAN => {
                 let ffx = self.ff_ffx_s().1;
-                self.mean.rate(self.t, ffx, self.force_rates(&dydt)[1])
+                let rate = self.force_rates(&y, &dydt)[1];
+                self.mean_now(&y).rate(self.t, ffx, rate)
             }
             _ => {
                 return Err(format!(
@@ -1173,11 +1185,11 @@ impl Transverse {
     /// vibration's 1/(2 pi f) and at most 1 ns (the equations' time counts from now, so any
     /// eps is resolved): at 3 kHz, 53 ps, so (eps / T)^2 is 1e-12 in steady sliding and 3e-7 in
     /// the Stribeck band, which the paper's values cross in about 100 ns.
-    fn force_rates(&self, dydt: &[f64; MAX_DIM]) -> [f64; 3] {
+    fn force_rates(&self, y_now: &[f64; MAX_DIM], dydt: &[f64; MAX_DIM]) -> [f64; 3] {
         let eps = (1e-6 / (TAU * self.p.f)).min(1e-9);
         let forces_at = |tau: f64| {
             let mut y = [0.0; MAX_DIM];
-            for ((y, y0), d) in y.iter_mut().zip(&self.y).zip(dydt) {
+            for ((y, y0), d) in y.iter_mut().zip(y_now).zip(dydt) {
                 *y = y0 + tau * d;
             }
             let c = self.p.contact(tau, &y);

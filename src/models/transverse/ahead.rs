@@ -4,9 +4,13 @@
 //! interpolant of the step's own order ([`StepAhead`]); the calls that follow inside the step
 //! read it too, instead of each taking a step of its own, cut to the call. Only while the drive
 //! is prescribed: an input may change at every call, and the step would no longer be the
-//! motion's.
+//! motion's. A call that ends inside the step only moves the clock: the state there, and the
+//! force integral the period's mean adds, are read from the interpolant when something asks
+//! for them ([`Transverse::state`], [`Transverse::mean_now`]), and the mean takes the step's
+//! whole integral at its end.
 
 use super::{axial, band_points, Drive, Equations, Solver, Transverse, Q};
+use crate::models::period_mean::PeriodMean;
 use crate::models::ramp::Ramp;
 use crate::solve::adaptive::Adaptive;
 use crate::solve::dopri::{Carry, StepAhead, CARRY_SAVED, STEP_AHEAD_SAVED};
@@ -21,8 +25,6 @@ pub(super) struct Ahead {
     /// The absolute time of its end, and the state there.
     end: f64,
     y_end: [f64; MAX_DIM],
-    /// The force integral q up to the last point read, which the period's mean holds.
-    q_read: f64,
     /// What the next step taken ahead, from this one's end, goes on with.
     carry: Carry,
 }
@@ -32,7 +34,7 @@ pub(super) struct Ahead {
 const CALLS_AHEAD: f64 = 2.0;
 
 /// How many numbers a step taken ahead adds to a saved state, after a flag.
-pub(super) const SAVED: usize = 3 + MAX_DIM + STEP_AHEAD_SAVED + CARRY_SAVED;
+pub(super) const SAVED: usize = 2 + MAX_DIM + STEP_AHEAD_SAVED + CARRY_SAVED;
 
 impl Transverse {
     /// Whether calls may read steps taken ahead: dopri5, with the drive prescribed.
@@ -41,28 +43,48 @@ impl Transverse {
             && matches!(self.drive, Drive::Prescribed(_))
     }
 
+    /// The step taken ahead whose interpolant holds the state now: the one `self.t` lies in,
+    /// short of its end.
+    fn inside(&self) -> Option<&Ahead> {
+        self.ahead.as_ref().filter(|a| self.t < a.end)
+    }
+
+    /// The state now: `self.y`, or inside a step taken ahead its interpolant's.
+    pub(super) fn state(&self) -> [f64; MAX_DIM] {
+        let mut y = self.y;
+        if let Some(a) = self.inside() {
+            a.step.at(self.t - a.origin, &mut y);
+        }
+        y
+    }
+
+    /// The period's mean now, `y` the state now: inside a step taken ahead, with the force
+    /// integral from its start (the step ends on the period's boundary at the latest, so it
+    /// closes none).
+    pub(super) fn mean_now(&self, y: &[f64; MAX_DIM]) -> PeriodMean {
+        let mut mean = self.mean.clone();
+        if self.trim.mean && self.inside().is_some() {
+            mean.add(y[Q], self.t);
+        }
+        mean
+    }
+
     /// Answers a call ending at `t_end` from the step taken ahead, if there is one: inside it,
-    /// from its interpolant (true); at or past its end, by going on from there (true if `t_end`
+    /// by moving the clock (true); at or past its end, by going on from there (true if `t_end`
     /// is its end, to round-off; false if the call must go on from `self.t`), the step then
     /// left in `behind` for the next to go on from.
     pub(super) fn read_ahead(&mut self, t_end: f64, behind: &mut Option<Ahead>) -> bool {
-        let Some(ahead) = &mut self.ahead else {
+        let Some(ahead) = &self.ahead else {
             return false;
         };
         let slack = self.mean.slack(t_end);
         if t_end < ahead.end - slack {
-            ahead.step.at(t_end - ahead.origin, &mut self.y);
-            if self.trim.mean {
-                // Inside the period: the step ends on its boundary at the latest.
-                self.mean.add(self.y[Q] - ahead.q_read, t_end);
-            }
-            ahead.q_read = self.y[Q];
             self.t = t_end;
             return true;
         }
         self.y = ahead.y_end;
         if self.trim.mean {
-            self.mean.add(ahead.y_end[Q] - ahead.q_read, ahead.end);
+            self.mean.add(ahead.y_end[Q], ahead.end);
         }
         self.t = if t_end <= ahead.end + slack {
             t_end
@@ -74,7 +96,7 @@ impl Transverse {
     }
 
     /// Answers a call of `h` that ends inside the step taken ahead, short of its end (true): it
-    /// reads the interpolant and cannot fail. False, with nothing changed, otherwise.
+    /// moves the clock and cannot fail. False, with nothing changed, otherwise.
     pub(super) fn read_inside_ahead(&mut self, h: f64) -> bool {
         let t_end = self.t + h;
         match &self.ahead {
@@ -150,7 +172,6 @@ impl Transverse {
             origin: t,
             end: end_time,
             y_end: self.y,
-            q_read: 0.0,
             carry,
         });
         Ok(true)
@@ -161,7 +182,7 @@ impl Transverse {
         match &self.ahead {
             None => out.push(0.0),
             Some(a) => {
-                out.extend_from_slice(&[1.0, a.origin, a.end, a.q_read]);
+                out.extend_from_slice(&[1.0, a.origin, a.end]);
                 out.extend_from_slice(&a.y_end);
                 a.step.write(out);
                 a.carry.write(out);
@@ -175,8 +196,8 @@ impl Transverse {
             || "a TransverseFriction state holds a step taken ahead that is not one".to_string();
         self.ahead = match saved {
             [flag] if *flag == 0.0 => None,
-            [flag, origin, end, q_read, rest @ ..]
-                if *flag == 1.0 && rest.len() == SAVED - 3 && self.looks_ahead() =>
+            [flag, origin, end, rest @ ..]
+                if *flag == 1.0 && rest.len() == SAVED - 2 && self.looks_ahead() =>
             {
                 let (y, rest) = rest.split_at(MAX_DIM);
                 let (step, carry) = rest.split_at(STEP_AHEAD_SAVED);
@@ -187,7 +208,6 @@ impl Transverse {
                     origin: *origin,
                     end: *end,
                     y_end,
-                    q_read: *q_read,
                     carry: Carry::read(carry).ok_or_else(refused)?,
                 })
             }
@@ -223,7 +243,7 @@ mod tests {
             let mut reference = Transverse::new(&tight, 0.0).unwrap();
             let mut stepped = Transverse::new(&v, 0.0).unwrap();
             let mut sim = Transverse::new(&v, 0.0).unwrap();
-            let (mut worst, mut worst_stepped) = ([0.0f64; 2], [0.0f64; 2]);
+            let (mut worst, mut worst_stepped) = ([0.0f64; 3], [0.0f64; 3]);
             let (mut calls, mut read_inside) = (0, 0);
             for _ in 0..200 {
                 reference.do_step(1e-5, &tight).unwrap();
@@ -233,11 +253,15 @@ mod tests {
                     calls += 1;
                     read_inside += usize::from(sim.ahead.is_some());
                 }
+                // The body's velocity, x', from the state the outputs' derivatives read, in
+                // units of the drive's.
+                let rate = |s: &Transverse, v: &ValueSet| s.output_derivative(vr::X, v).unwrap();
                 let off = |s: &Transverse| {
                     let fc = s.fc;
                     [
                         (s.forces().1 - reference.forces().1).abs() / fc,
                         (s.mean_ffx() - reference.mean_ffx()).abs() / fc,
+                        (rate(s, &v) - rate(&reference, &tight)).abs() / s.vd(),
                     ]
                 };
                 for (w, o) in worst.iter_mut().zip(off(&sim)) {
