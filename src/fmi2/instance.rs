@@ -747,8 +747,8 @@ mod tests {
     use crate::report::stability::solvers;
     use crate::variables::values::ValueSet;
 
-    /// fmi2DoStep saves the simulation into a buffer of this capacity before every step; a state
-    /// that did not fit would allocate there.
+    /// fmi2DoStep saves the simulation into a buffer of this capacity before every step that
+    /// integrates; a state that did not fit would allocate there.
     #[test]
     fn rollback_buffer_fits_every_model() {
         for model in MODELS {

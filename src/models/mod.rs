@@ -39,7 +39,8 @@ pub trait Simulation: Send {
 
     /// Writes the dynamic state as numbers into `out`, replacing what it held (parameters
     /// live in the [`ValueSet`]). Into a buffer the caller keeps: fmi2DoStep saves the state
-    /// before every step, to roll a failed step back, and allocates nothing.
+    /// before every step that [`Simulation::read_inside`] does not answer, to roll a failed
+    /// step back, and allocates nothing.
     fn save_into(&self, out: &mut Vec<f64>);
 
     /// The dynamic state as numbers, in a new vector.
