@@ -507,15 +507,15 @@ impl Instance {
                 self.warning(&format!("{function}: {message}"));
                 status = Status::Warning;
             }
-            // An input set again without a derivative is held (FMI 2.0, 4.2.1, leaves this
-            // open; holding is what a master that sets no derivative expects).
+            // An input set again without a derivative moves as the model's input scheme says:
+            // held unless told otherwise (FMI 2.0, 4.2.1, leaves this open; holding is what a
+            // master that sets no derivative means).
             if self.model.table.interpolates_inputs
                 && self.model.table.variable(vr).map(|v| v.causality) == Some(Causality::Input)
             {
                 self.pending_derivatives.retain(|&(r, _)| r != vr);
                 if let Some(sim) = self.sim.as_mut() {
-                    // Accepted when the derivative was: this model takes them for its inputs.
-                    let _ = sim.set_input_derivative(vr, 0.0);
+                    sim.drop_input_derivative(vr);
                 }
             }
         }

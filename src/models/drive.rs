@@ -14,7 +14,9 @@
 //! exponential per distinct step size). The motor is a source, so there is no passivity to
 //! check; the state is checked finite.
 
-use super::switch::{DriveSolver, Switch, VoltageSource};
+use super::input_scheme::{self, Extrapolator};
+use super::ramp::Ramp;
+use super::switch::{DriveSolver, InputScheme, Switch, VoltageSource};
 use super::{require_finite_start, require_non_negative, require_positive, Simulation};
 use crate::models::drive::table::{vr, TABLE};
 use crate::solve::expm::{expm, mul_vec, Matrix, Propagators};
@@ -78,8 +80,9 @@ pub struct Drive {
     t: f64,
     /// i, omega, x_nut.
     y: [f64; 3],
-    /// V_in' and F_load' for the coming step (zero: held).
-    input_rates: [f64; 2],
+    /// How V_in and F_load move over a step: their past values and the master's derivatives.
+    inputs: [Extrapolator; 2],
+    input_scheme: InputScheme,
     /// expm(A h) of the last few step sizes h, reused while the master keeps its step.
     propagators: Propagators<DIM>,
 }
@@ -138,7 +141,8 @@ impl Drive {
             p,
             t: start_time,
             y: [0.0; 3],
-            input_rates: [0.0; 2],
+            inputs: [Extrapolator::default(); 2],
+            input_scheme: InputScheme::read(values, vr::INPUT_SCHEME)?,
             propagators: Propagators::default(),
         })
     }
@@ -174,26 +178,32 @@ impl Drive {
 
 impl Simulation for Drive {
     fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String> {
-        // The rates apply to this step only (fmi2DoStep restores them with the rest of the
-        // state when the step fails).
-        let [voltage_rate, force_rate] = std::mem::take(&mut self.input_rates);
         if !(h > 0.0 && h.is_finite()) {
             return Err(format!("communication step {h} s: expected a step > 0"));
         }
         let (voltage, force) = self.inputs(values)?;
         let phi = self.propagator(h)?;
+        // The master's derivatives apply to this step only (fmi2DoStep restores them with the
+        // rest of the state when the step fails).
+        let [voltage_input, force_input] = &mut self.inputs;
+        let voltage = if self.p.voltage.is_some() {
+            voltage_input.lapse();
+            Ramp {
+                value: voltage,
+                rate: 0.0,
+            }
+        } else {
+            voltage_input.ramp(self.input_scheme, self.t, voltage, h)
+        };
+        let force = force_input.ramp(self.input_scheme, self.t, force, h);
         let z = [
             self.y[I],
             self.y[OMEGA],
             self.y[X],
-            voltage,
-            force,
-            if self.p.voltage.is_some() {
-                0.0
-            } else {
-                voltage_rate
-            },
-            force_rate,
+            voltage.value,
+            force.value,
+            voltage.rate,
+            force.rate,
         ];
         let z = mul_vec(&phi, &z);
         if !z[..3].iter().all(|v| v.is_finite()) {
@@ -220,24 +230,27 @@ impl Simulation for Drive {
 
     fn save_into(&self, out: &mut Vec<f64>) {
         // The input rates pending for the next step are state too: a master that rolls back
-        // and retakes the step need not set them again (FMI 2.0, 2.1.8).
-        let [voltage_rate, force_rate] = self.input_rates;
+        // and retakes the step need not set them again (FMI 2.0, 2.1.8). So are the inputs'
+        // past values the input scheme reads.
         out.clear();
-        out.extend_from_slice(&[
-            self.t,
-            self.y[I],
-            self.y[OMEGA],
-            self.y[X],
-            voltage_rate,
-            force_rate,
-        ]);
+        out.extend_from_slice(&[self.t, self.y[I], self.y[OMEGA], self.y[X]]);
+        for input in &self.inputs {
+            input.save(out);
+        }
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
-        super::check_saved(TABLE.model_identifier, state, 6)?;
+        super::check_saved(TABLE.model_identifier, state, 4 + 2 * input_scheme::SAVED)?;
+        let mut inputs = self.inputs;
+        for (input, saved) in inputs
+            .iter_mut()
+            .zip(state[4..].chunks_exact(input_scheme::SAVED))
+        {
+            input.restore(saved)?;
+        }
+        self.inputs = inputs;
         self.t = state[0];
         self.y.copy_from_slice(&state[1..4]);
-        self.input_rates = [state[4], state[5]];
         Ok(())
     }
 
@@ -247,11 +260,19 @@ impl Simulation for Drive {
         derivative: f64,
     ) -> Result<(), String> {
         match value_reference {
-            vr::V_IN => self.input_rates[0] = derivative,
-            vr::F_LOAD => self.input_rates[1] = derivative,
+            vr::V_IN => self.inputs[0].set_derivative(derivative),
+            vr::F_LOAD => self.inputs[1].set_derivative(derivative),
             _ => return Err(format!("value reference {value_reference} is not an input")),
         }
         Ok(())
+    }
+
+    fn drop_input_derivative(&mut self, value_reference: u32) {
+        match value_reference {
+            vr::V_IN => self.inputs[0].lapse(),
+            vr::F_LOAD => self.inputs[1].lapse(),
+            _ => {}
+        }
     }
 
     fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {

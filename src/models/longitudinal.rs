@@ -23,10 +23,12 @@ mod ode;
 pub mod stability;
 pub mod table;
 
+use super::input_scheme::{self, Extrapolator};
 use super::period_mean::PeriodMean;
 use super::ramp::Ramp;
 use super::switch::{
-    LongitudinalInitialState, LongitudinalLaw, NormalForceSource, Switch, VelocitySource,
+    InputScheme, LongitudinalInitialState, LongitudinalLaw, NormalForceSource, Switch,
+    VelocitySource,
 };
 use super::{require_passive, require_positive, resolved_energy, Scope, Simulation};
 use crate::friction::{coulomb, dahl::Dahl, lugre::LuGre, sgn};
@@ -90,6 +92,9 @@ pub struct Longitudinal {
     z: f64,
     /// The input velocity over the current step.
     v_in: Ramp,
+    /// How vr_in and FN_in move over a step: their past values and the master's derivatives.
+    inputs: [Extrapolator; 2],
+    input_scheme: InputScheme,
     /// The weight m g, the normal force's reference.
     weight: f64,
     /// The normal force over the current step when it is an input (None: the weight).
@@ -344,6 +349,8 @@ impl Longitudinal {
                 value: values.real(vr::VR_IN),
                 rate: 0.0,
             },
+            inputs: [Extrapolator::default(); 2],
+            input_scheme: InputScheme::read(values, vr::INPUT_SCHEME)?,
             weight: m * g,
             load: load.map(|_| Ramp {
                 value: values.real(vr::FN_IN),
@@ -714,6 +721,21 @@ impl Longitudinal {
 impl Simulation for Longitudinal {
     fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String> {
         self.read_inputs(values);
+        let [velocity, load] = &mut self.inputs;
+        if self.velocity == Velocity::Input {
+            self.v_in = velocity.ramp(self.input_scheme, self.t, self.v_in.value, h);
+        } else {
+            velocity.lapse();
+        }
+        match self.load.as_mut() {
+            // Where the scheme's line would leave FN_in > 0 the step holds it instead.
+            Some(force) => {
+                *force = load.ramp_where(self.input_scheme, self.t, force.value, h, |r| {
+                    r.value > 0.0 && r.at(h) > 0.0
+                })
+            }
+            None => load.lapse(),
+        }
         if self.velocity == Velocity::Input {
             self.v_in = Ramp::checked("vr_in", self.v_in.value, self.v_in.rate)?;
         }
@@ -822,6 +844,9 @@ impl Simulation for Longitudinal {
             .pending
             .map_or([0.0; 4], |p| [1.0, p.t, p.z, p.friction_work]);
         out.extend_from_slice(&pending);
+        for input in &self.inputs {
+            input.save(out);
+        }
         if let (Some(load), Some(mean)) = (self.load, &self.fc_mean) {
             out.extend_from_slice(&[load.value, load.rate]);
             out.extend_from_slice(&mean.save());
@@ -829,12 +854,21 @@ impl Simulation for Longitudinal {
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
-        let expected = if self.load.is_some() { 18 } else { 13 };
+        let base = 13 + 2 * input_scheme::SAVED;
+        let expected = if self.load.is_some() { base + 5 } else { base };
         super::check_saved(
             "LongitudinalFriction (with this normal force source)",
             state,
             expected,
         )?;
+        let mut inputs = self.inputs;
+        for (input, saved) in inputs
+            .iter_mut()
+            .zip(state[13..base].chunks_exact(input_scheme::SAVED))
+        {
+            input.restore(saved)?;
+        }
+        self.inputs = inputs;
         self.t = state[0];
         self.phase0 = turns(self.t, self.f);
         self.z = state[1];
@@ -860,10 +894,10 @@ impl Simulation for Longitudinal {
         };
         if let (Some(load), Some(mean)) = (self.load.as_mut(), self.fc_mean.as_mut()) {
             *load = Ramp {
-                value: state[13],
-                rate: state[14],
+                value: state[base],
+                rate: state[base + 1],
             };
-            mean.restore(&state[15..18]);
+            mean.restore(&state[base + 2..base + 5]);
         }
         Ok(())
     }
@@ -873,14 +907,35 @@ impl Simulation for Longitudinal {
         value_reference: u32,
         derivative: f64,
     ) -> Result<(), String> {
-        // Kept when the input is not read too, and ignored there like the input itself.
+        // Kept when the input is not read too, and ignored there like the input itself. The
+        // ramps' rates are what the outputs' derivatives read until the step.
         match (value_reference, self.load.as_mut()) {
-            (vr::VR_IN, _) => self.v_in.rate = derivative,
-            (vr::FN_IN, Some(load)) => load.rate = derivative,
+            (vr::VR_IN, _) => {
+                self.v_in.rate = derivative;
+                self.inputs[0].set_derivative(derivative);
+            }
+            (vr::FN_IN, Some(load)) => {
+                load.rate = derivative;
+                self.inputs[1].set_derivative(derivative);
+            }
             (vr::FN_IN, None) => {}
             _ => return Err(format!("value reference {value_reference} is not an input")),
         }
         Ok(())
+    }
+
+    fn drop_input_derivative(&mut self, value_reference: u32) {
+        match (value_reference, self.load.as_mut()) {
+            (vr::VR_IN, _) => {
+                self.v_in.rate = 0.0;
+                self.inputs[0].lapse();
+            }
+            (vr::FN_IN, Some(load)) => {
+                load.rate = 0.0;
+                self.inputs[1].lapse();
+            }
+            _ => {}
+        }
     }
 
     /// Every output's first derivative at the current state: vr', z' and W_diss' = FT vr -

@@ -3,6 +3,7 @@
 //! knows nothing of FMI.
 
 pub mod drive;
+pub mod input_scheme;
 pub mod longitudinal;
 pub mod oscillator;
 pub mod period_mean;
@@ -64,6 +65,12 @@ pub trait Simulation: Send {
     ) -> Result<(), String> {
         let _ = (value_reference, derivative);
         Err(HELD_INPUTS.to_string())
+    }
+
+    /// Drops the derivative set for an input, set again without one: over the coming step it
+    /// moves as the model's input scheme says (held unless the model has one).
+    fn drop_input_derivative(&mut self, value_reference: u32) {
+        let _ = self.set_input_derivative(value_reference, 0.0);
     }
 
     /// A warning the build or the last step left for the user (logged, the call itself having

@@ -9,6 +9,7 @@ use crate::models::{
     drive::table as drive, longitudinal::table as longitudinal, oscillator::table as oscillator,
     transverse::table as transverse,
 };
+use crate::variables::declare;
 use crate::variables::values::ValueSet;
 use crate::variables::variable::EnumType;
 
@@ -157,6 +158,15 @@ switch!(
     /// The drive's integration scheme.
     DriveSolver = drive::SOLVER { Exponential = "exponential" }
 );
+switch!(
+    /// How an input moves over a step the master gives no derivative for (every model with
+    /// inputs).
+    InputScheme = declare::INPUT_SCHEME {
+        Held = "held",
+        Extrapolated = "extrapolated",
+        Corrected = "corrected",
+    }
+);
 
 #[cfg(test)]
 mod tests {
@@ -188,8 +198,12 @@ mod tests {
             names::<OscillatorInitialState>(),
             names::<VoltageSource>(),
             names::<DriveSolver>(),
+            names::<InputScheme>(),
         ];
-        let types: Vec<&EnumType> = MODELS.iter().flat_map(|m| m.table.enum_types).collect();
+        // A type several tables share (InputScheme) is the same const in each.
+        let mut types: Vec<&EnumType> = MODELS.iter().flat_map(|m| m.table.enum_types).collect();
+        types.sort_by_key(|t| t.name);
+        types.dedup_by_key(|t| t.name);
         assert_eq!(enums.len(), types.len());
         for enum_type in types {
             let items: Vec<&str> = enum_type.items.iter().map(|(name, _)| *name).collect();

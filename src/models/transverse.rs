@@ -22,9 +22,10 @@ pub mod stability;
 pub mod table;
 mod two_phase;
 
+use super::input_scheme::{self, Extrapolator};
 use super::period_mean::PeriodMean;
 use super::ramp::Ramp;
-use super::switch::{self, DriveSource, InitialState, Switch, TransverseSolver};
+use super::switch::{self, DriveSource, InitialState, InputScheme, Switch, TransverseSolver};
 use super::{
     require_finite, require_finite_start, require_non_negative, require_passive, require_positive,
     resolved_energy, Scope, Simulation,
@@ -480,10 +481,11 @@ pub struct Transverse {
     /// The state at t, except inside a step taken ahead, whose interpolant holds it there
     /// ([`Transverse::state`]).
     y: [f64; MAX_DIM],
-    /// The drive velocity held over the current step (input source).
+    /// vd_in as set at the current step's start (input source).
     vd_held: f64,
-    /// vd_in's derivative for the coming step only (zero: held).
-    vd_rate: f64,
+    /// How vd_in moves over a step: its past values and the master's derivative.
+    vd_input: Extrapolator,
+    input_scheme: InputScheme,
     mean: PeriodMean,
     pub work: Work,
     /// What the scope lets the simulation skip.
@@ -775,7 +777,8 @@ impl Transverse {
             t: start_time,
             y,
             vd_held: vd_start,
-            vd_rate: 0.0,
+            vd_input: Extrapolator::default(),
+            input_scheme: InputScheme::read(values, vr::INPUT_SCHEME)?,
             mean: PeriodMean::new(start_time, 1.0 / f),
             work: Work::default(),
             trim,
@@ -950,21 +953,19 @@ impl Simulation for Transverse {
         }
         // A derivative applies to this step only (fmi2DoStep restores it with the rest of the
         // state when the step fails).
-        let rate = std::mem::take(&mut self.vd_rate);
-        if self.drive == Drive::Input {
+        let vd = if self.drive == Drive::Input {
             let v = values.real(vr::VD_IN);
             if !v.is_finite() {
                 return Err(format!("vd_in = {v} is not a finite number"));
             }
             self.vd_held = v;
-        }
-        let vd = Ramp {
-            value: self.vd(),
-            rate: if self.drive == Drive::Input {
-                rate
-            } else {
-                0.0
-            },
+            self.vd_input.ramp(self.input_scheme, self.t, v, h)
+        } else {
+            self.vd_input.lapse();
+            Ramp {
+                value: self.vd(),
+                rate: 0.0,
+            }
         };
         let start = self.t;
         let t_end = start + h;
@@ -1062,9 +1063,10 @@ impl Simulation for Transverse {
     }
 
     fn save_into(&self, out: &mut Vec<f64>) {
-        // The pending rate of vd_in is state too (FMI 2.0, 2.1.8): see DriveTrain's.
+        // vd_in's past values and pending rate are state too (FMI 2.0, 2.1.8): see DriveTrain's.
         out.clear();
-        out.extend_from_slice(&[self.t, self.vd_held, self.vd_rate]);
+        out.extend_from_slice(&[self.t, self.vd_held]);
+        self.vd_input.save(out);
         out.extend_from_slice(&self.y);
         out.extend_from_slice(&self.mean.save());
         match &self.solver {
@@ -1079,7 +1081,7 @@ impl Simulation for Transverse {
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
-        let base = 3 + MAX_DIM + 3;
+        let base = 2 + input_scheme::SAVED + MAX_DIM + 3;
         let extra = match &self.solver {
             Solver::TwoPhase(_) => two_phase::SAVED,
             // The step hint and the step taken ahead, if any (a flag first).
@@ -1096,9 +1098,10 @@ impl Simulation for Transverse {
         self.t = state[0];
         self.p.set_time(self.t);
         self.vd_held = state[1];
-        self.vd_rate = state[2];
-        self.y.copy_from_slice(&state[3..3 + MAX_DIM]);
-        self.mean.restore(&state[3 + MAX_DIM..base]);
+        let y = 2 + input_scheme::SAVED;
+        self.vd_input.restore(&state[2..y])?;
+        self.y.copy_from_slice(&state[y..y + MAX_DIM]);
+        self.mean.restore(&state[y + MAX_DIM..base]);
         match &mut self.solver {
             Solver::Adaptive(a) => a.set_step_hint(state[base]),
             Solver::Dop853(d) => d.h = state[base],
@@ -1117,8 +1120,14 @@ impl Simulation for Transverse {
             return Err(format!("value reference {value_reference} is not an input"));
         }
         // Kept when vd is prescribed too, and ignored there like vd_in itself.
-        self.vd_rate = derivative;
+        self.vd_input.set_derivative(derivative);
         Ok(())
+    }
+
+    fn drop_input_derivative(&mut self, value_reference: u32) {
+        if value_reference == vr::VD_IN {
+            self.vd_input.lapse();
+        }
     }
 
     /// Every output's first derivative, from the continuous-time equations at the current
@@ -1172,7 +1181,7 @@ impl Transverse {
         Ramp {
             value: self.vd_now(values),
             rate: if self.drive == Drive::Input {
-                self.vd_rate
+                self.vd_input.pending_rate()
             } else {
                 0.0
             },

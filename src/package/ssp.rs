@@ -30,11 +30,15 @@ pub enum Value {
     Real(f64),
 }
 
+/// How both components move their inputs over a step: engines hold them, and the coupled run
+/// is then first order in the step; `corrected` makes it about 2.5th (docs/coupling.md).
+const INPUT_SCHEME: (&str, Value) = ("input_scheme", Value::Item("corrected"));
+
 /// The drive, with its defaults (illustrative small stage running the nut at 0.5 mm/s).
 pub const DRIVE: Component = Component {
     name: "drive",
     table: &drive::TABLE,
-    values: &[],
+    values: &[INPUT_SCHEME],
 };
 
 /// The contact, driven by the nut: no support vibration, so that the coupled motion (break-away
@@ -48,6 +52,7 @@ pub const FRICTION: Component = Component {
         ("va", Value::Real(0.0)),
         ("initial", Value::Item("rest")),
         ("vd_in", Value::Real(0.0)),
+        INPUT_SCHEME,
     ],
 };
 

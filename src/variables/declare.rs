@@ -1,6 +1,6 @@
 //! Short constructors that keep the per-model tables readable.
 
-use super::variable::{Causality, Kind, Variability, Variable};
+use super::variable::{Causality, EnumType, Kind, Variability, Variable};
 
 /// The `min` of a parameter that must be strictly positive: the smallest normal f64, so the
 /// inclusive range check of every setter refuses 0 with "expected name > 0".
@@ -173,3 +173,36 @@ pub const fn contact_stiffness(value_reference: u32, start: f64) -> Variable {
         f64::INFINITY,
     )
 }
+
+/// The switch every model with inputs declares: how an input moves over a communication step
+/// when the master gives no derivative (the runtime side: `models::input_scheme`). Held by
+/// default, what the master's values mean unless it says otherwise; `DriveFriction.ssp` sets
+/// `corrected`.
+pub const fn input_scheme(value_reference: u32) -> Variable {
+    enum_parameter(
+        "input_scheme",
+        value_reference,
+        "How the inputs move over a communication step the master sets no derivative for",
+        INPUT_SCHEME.name,
+        1,
+    )
+}
+
+/// The items of `input_scheme`.
+pub const INPUT_SCHEME: EnumType = EnumType {
+    name: "InputScheme",
+    items: &[
+        (
+            "held",
+            "Each input keeps the value set at the communication point over the step, as co-simulation engines mean it",
+        ),
+        (
+            "extrapolated",
+            "Each input moves along the line through its values at the last two communication points (second order in the step)",
+        ),
+        (
+            "corrected",
+            "As extrapolated, plus what the input's integral over time missed so far, spread over the step (the integral follows the master's values to third order)",
+        ),
+    ],
+};

@@ -8,7 +8,7 @@
 // The electrical time constant L/R is 0.2 ms, the mechanical one J R/(kt_m ke) 10 ms.
 
 use crate::variables::declare::{
-    enum_parameter, real_input, real_output, real_parameter, POSITIVE,
+    enum_parameter, input_scheme, real_input, real_output, real_parameter, INPUT_SCHEME, POSITIVE,
 };
 use crate::variables::variable::{DefaultExperiment, EnumType, InputSwitch, ModelTable, Variable};
 
@@ -16,6 +16,7 @@ use crate::variables::variable::{DefaultExperiment, EnumType, InputSwitch, Model
 pub mod vr {
     pub const SOLVER: u32 = 1;
     pub const VOLTAGE_SOURCE: u32 = 2;
+    pub const INPUT_SCHEME: u32 = 3;
     pub const V: u32 = 10;
     pub const R: u32 = 11;
     pub const L: u32 = 12;
@@ -62,6 +63,7 @@ const VARIABLES: &[Variable] = &[
         VOLTAGE_SOURCE.name,
         1,
     ),
+    input_scheme(vr::INPUT_SCHEME),
     real_parameter(
         "V",
         vr::V,
@@ -203,7 +205,7 @@ pub const TABLE: ModelTable = ModelTable {
     model_identifier: "DriveTrain",
     description: "DC motor, gear and lead screw whose nut drives a load: a linear drive model for co-simulation with TransverseFriction",
     variables: VARIABLES,
-    enum_types: &[SOLVER, VOLTAGE_SOURCE],
+    enum_types: &[SOLVER, VOLTAGE_SOURCE, INPUT_SCHEME],
     input_switches: &[InputSwitch {
         switch: "voltage_source",
         item: "input",

@@ -2,8 +2,8 @@
 // (Leus & Gutowski 2008, JTAM 46(1)); Coulomb, Dahl or LuGre friction.
 
 use crate::variables::declare::{
-    body_mass, contact_stiffness, enum_parameter, gravity, integer_parameter, real_input,
-    real_output, real_parameter, tolerance, POSITIVE,
+    body_mass, contact_stiffness, enum_parameter, gravity, input_scheme, integer_parameter,
+    real_input, real_output, real_parameter, tolerance, INPUT_SCHEME, POSITIVE,
 };
 use crate::variables::variable::{DefaultExperiment, EnumType, InputSwitch, ModelTable, Variable};
 
@@ -13,6 +13,7 @@ pub mod vr {
     pub const VELOCITY_SOURCE: u32 = 2;
     pub const NORMAL_FORCE_SOURCE: u32 = 6;
     pub const INITIAL: u32 = 7;
+    pub const INPUT_SCHEME: u32 = 8;
     pub const SOLVER: u32 = 3;
     pub const STEPS_PER_PERIOD: u32 = 4;
     pub const TOLERANCE: u32 = 5;
@@ -134,6 +135,7 @@ const VARIABLES: &[Variable] = &[
         NORMAL_FORCE_SOURCE.name,
         1,
     ),
+    input_scheme(vr::INPUT_SCHEME),
     enum_parameter(
         "initial",
         vr::INITIAL,
@@ -294,7 +296,7 @@ pub const TABLE: ModelTable = ModelTable {
     model_identifier: "LongitudinalFriction",
     description: "Sliding friction under longitudinal tangential contact vibration: Coulomb, Dahl and LuGre (Leus & Gutowski 2008)",
     variables: VARIABLES,
-    enum_types: &[LAW, VELOCITY_SOURCE, NORMAL_FORCE_SOURCE, INITIAL, SOLVER],
+    enum_types: &[LAW, VELOCITY_SOURCE, NORMAL_FORCE_SOURCE, INITIAL, SOLVER, INPUT_SCHEME],
     input_switches: &[
         InputSwitch {
             switch: "velocity_source",

@@ -104,7 +104,7 @@ impl Transverse {
             _ => return false,
         }
         // As do_step does: an input's derivative applies to one step, and vd is prescribed.
-        self.vd_rate = 0.0;
+        self.vd_input.lapse();
         self.t = t_end;
         self.p.set_time(t_end);
         true

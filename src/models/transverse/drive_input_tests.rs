@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::models::transverse::table::{BODY, DRIVE_SOURCE, SOLVER, TABLE};
+use crate::variables::declare::INPUT_SCHEME;
 
 fn values(solver: &str, body: &str) -> ValueSet {
     let mut v = ValueSet::start(&TABLE);
@@ -112,6 +113,40 @@ fn every_output_derivative_matches_its_difference_quotient() {
                 (quotient - mean).abs() <= 1e-6 * mean.abs() + round_off,
                 "{} at t = {t}: quotient {quotient}, derivative {mean}",
                 var.name
+            );
+        }
+    }
+}
+
+/// Oracle: with the body held the drive stretch is the integral of vd. Under vd_in = a t set at
+/// every communication point with no derivative, `held` loses a h^2 / 2 a step, `extrapolated`
+/// only the first step's (it knows one value there), and `corrected` makes that up over the
+/// second step: the stretch is a t^2 / 2 from then on.
+#[test]
+fn input_schemes_stretch_the_drive_by_what_they_make_of_the_values() {
+    let (a, h, steps) = (0.3, 1e-3, 6);
+    for solver in SOLVERS {
+        for (scheme, lost) in [
+            ("held", steps as f64),
+            ("extrapolated", 1.0),
+            ("corrected", 0.0),
+        ] {
+            let mut v = values(solver, "held");
+            v.set(
+                vr::INPUT_SCHEME,
+                f64::from(INPUT_SCHEME.value_of(scheme).unwrap()),
+            );
+            let mut sim = Transverse::new(&v, 0.0).unwrap();
+            for k in 0..steps {
+                v.set(vr::VD_IN, a * k as f64 * h);
+                sim.do_step(h, &v).unwrap();
+            }
+            let t = steps as f64 * h;
+            let want = sim.p.kd * (0.5 * a * t * t - lost * 0.5 * a * h * h);
+            let fd = sim.drive_force();
+            assert!(
+                (fd - want).abs() < 1e-9 * want,
+                "{solver}, {scheme}: Fd = {fd}, want {want}"
             );
         }
     }

@@ -2,8 +2,8 @@
 // with a 2D LuGre contact (paper T, eq. 1-30).
 
 use crate::variables::declare::{
-    body_mass, contact_stiffness, enum_parameter, gravity, integer_parameter, real_input,
-    real_output, real_parameter, tolerance, POSITIVE,
+    body_mass, contact_stiffness, enum_parameter, gravity, input_scheme, integer_parameter,
+    real_input, real_output, real_parameter, tolerance, INPUT_SCHEME, POSITIVE,
 };
 use crate::variables::variable::{DefaultExperiment, EnumType, InputSwitch, ModelTable, Variable};
 
@@ -16,6 +16,7 @@ pub mod vr {
     pub const INITIAL: u32 = 5;
     pub const STEPS_PER_PERIOD: u32 = 6;
     pub const TOLERANCE: u32 = 7;
+    pub const INPUT_SCHEME: u32 = 8;
     pub const M: u32 = 10;
     pub const MU: u32 = 11;
     pub const G: u32 = 12;
@@ -138,6 +139,7 @@ const VARIABLES: &[Variable] = &[
     ),
     enum_parameter("body", vr::BODY, "Free body, or held still", BODY.name, 1),
     enum_parameter("initial", vr::INITIAL, "Initial state", INITIAL.name, 1),
+    input_scheme(vr::INPUT_SCHEME),
     integer_parameter(
         "steps_per_period",
         vr::STEPS_PER_PERIOD,
@@ -299,7 +301,7 @@ pub const TABLE: ModelTable = ModelTable {
     model_identifier: "TransverseFriction",
     description: "Sliding friction under transverse tangential vibration of the support: 2D LuGre contact, body on a compliant drive",
     variables: VARIABLES,
-    enum_types: &[SLIP_LAW, SOLVER, DRIVE_SOURCE, BODY, INITIAL],
+    enum_types: &[SLIP_LAW, SOLVER, DRIVE_SOURCE, BODY, INITIAL, INPUT_SCHEME],
     input_switches: &[InputSwitch {
         switch: "drive_source",
         item: "input",

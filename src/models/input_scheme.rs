@@ -1,0 +1,194 @@
+//! How an input moves over a communication step when the master gives no derivative.
+//!
+//! Co-simulation engines (libcosim, ecos) set each input to the partner's output at the
+//! communication point and hold it over the step: the coupled run is then first order in the
+//! step. An FMU that remembers the values its inputs had at the last communication points can do
+//! better by itself:
+//!
+//! - `held`: the value set, over the whole step (what the engine means);
+//! - `extrapolated`: the line through the last two communication points' values, continued over
+//!   the step (second order);
+//! - `corrected`: `extrapolated`, plus what the input's integral over time (a velocity's
+//!   displacement, a force's impulse) missed over the steps so far, spread over the coming step.
+//!   What an input did over the last step is read from the quadratic through its last three
+//!   values, so the integral the model sees stays within the third order of what the master's
+//!   samples say, and the coupled error falls as about the 2.5th power of the step.
+//!
+//! A derivative the master sets (fmi2SetRealInputDerivatives) takes precedence, for that step.
+//! The values at past communication points, the integral missed and the derivative pending for
+//! the coming step are state: saved, restored, rolled back with the rest of the model.
+
+use super::ramp::Ramp;
+use super::switch::InputScheme;
+/// The numbers [`Extrapolator::save`] writes.
+pub const SAVED: usize = 11;
+
+/// One input's past values at communication points, oldest first, and what its last step used.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Extrapolator {
+    /// (time, value) at the last three communication points; `count` of them are known.
+    samples: [(f64, f64); 3],
+    count: usize,
+    /// The integral over time of the input the model was given over the last step.
+    used: f64,
+    /// What the integral of the given input is short of the master's values' so far.
+    debt: f64,
+    /// The derivative the master set for the coming step.
+    derivative: Option<f64>,
+}
+
+impl Extrapolator {
+    /// The master's derivative for the coming step only.
+    pub fn set_derivative(&mut self, derivative: f64) {
+        self.derivative = Some(derivative);
+    }
+
+    /// The derivative the master set for the coming step, 0 if none (the outputs' derivatives
+    /// read it).
+    pub fn pending_rate(&self) -> f64 {
+        self.derivative.unwrap_or(0.0)
+    }
+
+    /// A step the input does not enter (its source is not the input, or the step only reads
+    /// one taken ahead): the master's derivative for it lapses.
+    pub fn lapse(&mut self) {
+        self.derivative = None;
+    }
+
+    /// The input over the step `[t, t + h]` (on the step's own time, 0 at its start), `value`
+    /// being its value at `t`: the master's derivative if one was set for the step, else
+    /// `scheme`'s. Records `(t, value)` and takes the derivative, so call it once per step.
+    pub fn ramp(&mut self, scheme: InputScheme, t: f64, value: f64, h: f64) -> Ramp {
+        self.ramp_where(scheme, t, value, h, |_| true)
+    }
+
+    /// As [`Extrapolator::ramp`], holding the value over the step where the scheme's line is
+    /// not `admissible` for the model (a master's derivative is taken as it is).
+    pub fn ramp_where(
+        &mut self,
+        scheme: InputScheme,
+        t: f64,
+        value: f64,
+        h: f64,
+        admissible: impl Fn(Ramp) -> bool,
+    ) -> Ramp {
+        if scheme == InputScheme::Held {
+            return Ramp {
+                value,
+                rate: self.derivative.take().unwrap_or(0.0),
+            };
+        }
+        self.record(t, value);
+        let ramp = match self.derivative.take() {
+            Some(rate) => {
+                // The master drives the input: nothing of ours to make up later.
+                self.debt = 0.0;
+                Ramp { value, rate }
+            }
+            None => {
+                let rate = self.slope();
+                let offset = if scheme == InputScheme::Corrected {
+                    self.debt / h
+                } else {
+                    0.0
+                };
+                let ramp = Ramp {
+                    value: value + offset,
+                    rate,
+                };
+                if admissible(ramp) {
+                    ramp
+                } else {
+                    Ramp { value, rate: 0.0 }
+                }
+            }
+        };
+        self.used = ramp.integral(0.0, h);
+        ramp
+    }
+
+    /// Takes the value at a new communication point `t` and settles what the last step's input
+    /// missed of the master's values (a point at or before the last one restarts the history:
+    /// the master went back without restoring a state).
+    fn record(&mut self, t: f64, value: f64) {
+        if self.count > 0 && t <= self.samples[2].0 {
+            self.count = 0;
+            self.debt = 0.0;
+        }
+        self.samples.rotate_left(1);
+        self.samples[2] = (t, value);
+        self.count = (self.count + 1).min(3);
+        if self.count >= 2 {
+            self.debt += self.last_integral() - self.used;
+        }
+    }
+
+    /// The slope of the line through the last two values (0 with one).
+    fn slope(&self) -> f64 {
+        if self.count < 2 {
+            return 0.0;
+        }
+        let [_, (t1, u1), (t2, u2)] = self.samples;
+        (u2 - u1) / (t2 - t1)
+    }
+
+    /// The integral over the last step of the quadratic through the last three values (the
+    /// trapezoid with two), by two-point Gauss, exact for it.
+    fn last_integral(&self) -> f64 {
+        let [(t0, u0), (t1, u1), (t2, u2)] = self.samples;
+        let h = t2 - t1;
+        if self.count < 3 {
+            return 0.5 * h * (u1 + u2);
+        }
+        let quadratic = |t: f64| {
+            u0 * (t - t1) * (t - t2) / ((t0 - t1) * (t0 - t2))
+                + u1 * (t - t0) * (t - t2) / ((t1 - t0) * (t1 - t2))
+                + u2 * (t - t0) * (t - t1) / ((t2 - t0) * (t2 - t1))
+        };
+        let (middle, half_width) = (0.5 * (t1 + t2), 0.5 * h / 3f64.sqrt());
+        0.5 * h * (quadratic(middle - half_width) + quadratic(middle + half_width))
+    }
+
+    /// Appends [`SAVED`] numbers that [`Extrapolator::restore`] takes back to the same bits.
+    pub fn save(&self, out: &mut Vec<f64>) {
+        for (t, u) in self.samples {
+            out.extend_from_slice(&[t, u]);
+        }
+        out.extend_from_slice(&[
+            self.count as f64,
+            self.used,
+            self.debt,
+            f64::from(u8::from(self.derivative.is_some())),
+            self.derivative.unwrap_or(0.0),
+        ]);
+    }
+
+    /// Takes back what [`Extrapolator::save`] wrote (`saved` holds exactly [`SAVED`] numbers).
+    pub fn restore(&mut self, saved: &[f64]) -> Result<(), String> {
+        let count = saved[6];
+        if !matches!(count, 0.0..=3.0) || count.fract() != 0.0 {
+            return Err(format!(
+                "a saved input history holds {count} values: expected 0, 1, 2 or 3"
+            ));
+        }
+        for (k, sample) in self.samples.iter_mut().enumerate() {
+            *sample = (saved[2 * k], saved[2 * k + 1]);
+        }
+        self.count = count as usize;
+        self.used = saved[7];
+        self.debt = saved[8];
+        self.derivative = match saved[9] {
+            0.0 => None,
+            1.0 => Some(saved[10]),
+            flag => {
+                return Err(format!(
+                    "a saved input's derivative flag is {flag}: expected 0 or 1"
+                ))
+            }
+        };
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests;
