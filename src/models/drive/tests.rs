@@ -202,3 +202,35 @@ fn output_derivatives_are_the_state_equations() {
     assert!(before.output_derivative(vr::R, &values).is_err());
     assert!(drive.set_input_derivative(vr::V_NUT, 1.0).is_err());
 }
+
+/// With F_load = a t set at every communication point and no derivative, `extrapolated` holds
+/// the first step (one value known) and then moves the load along the same line the master's
+/// derivative a would: the two runs meet to round-off.
+#[test]
+fn an_extrapolated_load_ramp_is_the_ramp_the_derivative_gives() {
+    let (a, h) = (50.0, 1e-4);
+    let mut values = ValueSet::start(&TABLE);
+    values.set(
+        vr::INPUT_SCHEME,
+        f64::from(
+            crate::variables::declare::INPUT_SCHEME
+                .value_of("extrapolated")
+                .unwrap(),
+        ),
+    );
+    let mut extrapolated = Drive::new(&values, 0.0).unwrap();
+    let mut derivative = Drive::new(&ValueSet::start(&TABLE), 0.0).unwrap();
+    for k in 0..20 {
+        let t = k as f64 * h;
+        values.set(vr::F_LOAD, a * t);
+        if k > 0 {
+            derivative.set_input_derivative(vr::F_LOAD, a).unwrap();
+        }
+        extrapolated.do_step(h, &values).unwrap();
+        derivative.do_step(h, &values).unwrap();
+    }
+    let (x, y) = (extrapolated.save(), derivative.save());
+    for k in 1..4 {
+        assert!((x[k] - y[k]).abs() <= 1e-12 * y[k].abs(), "{x:?} {y:?}");
+    }
+}

@@ -397,3 +397,50 @@ fn a_periodic_start_is_steady_from_the_first_period() {
         "{refused}"
     );
 }
+
+/// Oracle: Coulomb's work is mu FN times the slip. With vr_in = v0 + a t (FN the weight), or
+/// vr_in = v0 and FN_in = W + b t, set at every communication point without derivatives, W_diss
+/// is mu times the integral of what the scheme made of the moving input: `held` misses every
+/// step's rise, `extrapolated` only the first step's (it knows one value there), and `corrected`
+/// makes that up over the second step, so from then on it is the master's line's integral.
+#[test]
+fn input_schemes_slide_by_what_they_make_of_the_values() {
+    let (v0, h, steps) = (0.1, 2e-4, 8);
+    let t = steps as f64 * h;
+    let mu = FC / WEIGHT;
+    for (a, b) in [(40.0, 0.0), (0.0, 5.0)] {
+        let dissipated = |scheme: &str| {
+            let mut v = with_inputs(values("coulomb", "exponential"), true, b != 0.0);
+            v.set(
+                vr::INPUT_SCHEME,
+                f64::from(
+                    crate::variables::declare::INPUT_SCHEME
+                        .value_of(scheme)
+                        .unwrap(),
+                ),
+            );
+            let mut sim = Longitudinal::new(&v, 0.0).unwrap();
+            for k in 0..steps {
+                let t = k as f64 * h;
+                v.set(vr::VR_IN, v0 + a * t);
+                v.set(vr::FN_IN, WEIGHT + b * t);
+                sim.do_step(h, &v).unwrap();
+            }
+            sim.dissipated_energy()
+        };
+        let exact = mu * (v0 * WEIGHT * t + (v0 * b + a * WEIGHT) * t * t / 2.0);
+        let first_step = mu * (v0 * b + a * WEIGHT) * h * h / 2.0;
+        for (scheme, lost) in [
+            ("held", steps as f64 * first_step),
+            ("extrapolated", first_step),
+            ("corrected", 0.0),
+        ] {
+            let got = dissipated(scheme);
+            assert!(
+                (got - (exact - lost)).abs() < 1e-9 * exact,
+                "a = {a}, b = {b}, {scheme}: W_diss = {got}, want {}",
+                exact - lost
+            );
+        }
+    }
+}
