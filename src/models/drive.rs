@@ -267,6 +267,12 @@ impl Simulation for Drive {
         Ok(())
     }
 
+    fn take_warning(&mut self) -> Option<String> {
+        let [voltage, force] = &mut self.inputs;
+        let unstable = force.instability("F_load", self.input_scheme);
+        unstable.or_else(|| voltage.instability("V_in", self.input_scheme))
+    }
+
     fn drop_input_derivative(&mut self, value_reference: u32) {
         match value_reference {
             vr::V_IN => self.inputs[0].lapse(),

@@ -17,11 +17,18 @@
 //! A derivative the master sets (fmi2SetRealInputDerivatives) takes precedence, for that step.
 //! The values at past communication points, the integral missed and the derivative pending for
 //! the coming step are state: saved, restored, rolled back with the rest of the model.
+//!
+//! A coupling through an input is stable only below some communication step, which depends on
+//! the partner as much as on this model (docs/coupling.md measures it against the drive spring's
+//! stiffness), and is the lower the more a scheme extrapolates. Past it the exchanged values
+//! oscillate with the step and grow. Each input watches for that ([`Watch`]) under every scheme
+//! and says it once ([`Extrapolator::instability`]), with the largest stable step estimated from
+//! the growth ([`stability`]).
 
 use super::ramp::Ramp;
-use super::switch::InputScheme;
+use super::switch::{InputScheme, Switch};
 /// The numbers [`Extrapolator::save`] writes.
-pub const SAVED: usize = 11;
+pub const SAVED: usize = 12 + Watch::SAVED;
 
 /// One input's past values at communication points, oldest first, and what its last step used.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -35,6 +42,9 @@ pub struct Extrapolator {
     debt: f64,
     /// The derivative the master set for the coming step.
     derivative: Option<f64>,
+    /// The last step's length.
+    step: f64,
+    watch: Watch,
 }
 
 impl Extrapolator {
@@ -72,19 +82,19 @@ impl Extrapolator {
         h: f64,
         admissible: impl Fn(Ramp) -> bool,
     ) -> Ramp {
-        if scheme == InputScheme::Held {
-            return Ramp {
-                value,
-                rate: self.derivative.take().unwrap_or(0.0),
-            };
-        }
         self.record(t, value);
+        self.step = h;
+        if scheme != InputScheme::Corrected {
+            // Nothing is made up: the integral's shortfall is the scheme's error, not a debt.
+            self.debt = 0.0;
+        }
         let ramp = match self.derivative.take() {
             Some(rate) => {
                 // The master drives the input: nothing of ours to make up later.
                 self.debt = 0.0;
                 Ramp { value, rate }
             }
+            None if scheme == InputScheme::Held => Ramp { value, rate: 0.0 },
             None => {
                 let rate = self.slope();
                 let offset = if scheme == InputScheme::Corrected {
@@ -114,6 +124,9 @@ impl Extrapolator {
         if self.count > 0 && t <= self.samples[2].0 {
             self.count = 0;
             self.debt = 0.0;
+        }
+        if self.count > 0 {
+            self.watch.add(value - self.samples[2].1);
         }
         self.samples.rotate_left(1);
         self.samples[2] = (t, value);
@@ -160,7 +173,9 @@ impl Extrapolator {
             self.debt,
             f64::from(u8::from(self.derivative.is_some())),
             self.derivative.unwrap_or(0.0),
+            self.step,
         ]);
+        self.watch.save(out);
     }
 
     /// Takes back what [`Extrapolator::save`] wrote (`saved` holds exactly [`SAVED`] numbers).
@@ -177,6 +192,7 @@ impl Extrapolator {
         self.count = count as usize;
         self.used = saved[7];
         self.debt = saved[8];
+        let watch = Watch::restore(&saved[12..])?;
         self.derivative = match saved[9] {
             0.0 => None,
             1.0 => Some(saved[10]),
@@ -186,9 +202,115 @@ impl Extrapolator {
                 ))
             }
         };
+        self.step = saved[11];
+        self.watch = watch;
         Ok(())
     }
+
+    /// The warning that the coupling through this input (`name`, moved by `scheme`) has gone
+    /// unstable: once an instance, None until then.
+    pub fn instability(&mut self, name: &str, scheme: InputScheme) -> Option<String> {
+        let growth = self.watch.take()?;
+        let h = self.step;
+        let largest = stability::largest_stable_steps(scheme, h, growth)(scheme);
+        let scheme_name = scheme.name();
+        Some(format!(
+            "input_scheme = {scheme_name}: {name} oscillates with the communication step of {h:.4e} s and grows {growth:.2}-fold a step: the coupling through it is unstable at this step. Estimated from that growth, the largest stable step with {scheme_name} is {largest:.2e} s (docs/coupling.md, \"Stability\"); take a shorter one"
+        ))
+    }
 }
+
+/// Watches an input's changes from one communication point to the next for the coupling
+/// instability: in blocks of [`Watch::BLOCK`] steps, each with at least one change of sign (an
+/// oscillation of a few steps' period, which no step resolves), the largest change growing from
+/// block to block and at least doubling over two.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Watch {
+    /// The largest change of the two blocks before and of the current one.
+    largest: [f64; 3],
+    /// Whether each of those blocks changed sign.
+    turned: [bool; 3],
+    /// Changes so far in the current block.
+    count: u32,
+    last_change: f64,
+    /// The growth a step once found (taken by [`Watch::take`]), and whether it was.
+    found: Option<f64>,
+    reported: bool,
+}
+
+impl Watch {
+    const BLOCK: u32 = 5;
+    const SAVED: usize = 11;
+
+    fn add(&mut self, change: f64) {
+        if self.count == Self::BLOCK {
+            self.largest.rotate_left(1);
+            self.turned.rotate_left(1);
+            (self.largest[2], self.turned[2], self.count) = (0.0, false, 0);
+        }
+        self.largest[2] = self.largest[2].max(change.abs());
+        self.turned[2] |= change * self.last_change < 0.0;
+        self.last_change = change;
+        self.count += 1;
+        let [a, b, c] = self.largest;
+        if self.count == Self::BLOCK
+            && !self.reported
+            && self.found.is_none()
+            && self.turned.iter().all(|&turned| turned)
+            && a > 0.0
+            && a < b
+            && b < c
+            && c >= 2.0 * a
+        {
+            self.found = Some((c / a).powf(1.0 / f64::from(2 * Self::BLOCK)));
+        }
+    }
+
+    fn take(&mut self) -> Option<f64> {
+        let growth = self.found.take()?;
+        self.reported = true;
+        Some(growth)
+    }
+
+    fn save(&self, out: &mut Vec<f64>) {
+        out.extend_from_slice(&self.largest);
+        out.extend(self.turned.map(|turned| f64::from(u8::from(turned))));
+        out.extend_from_slice(&[
+            f64::from(self.count),
+            self.last_change,
+            f64::from(u8::from(self.found.is_some())),
+            self.found.unwrap_or(0.0),
+            f64::from(u8::from(self.reported)),
+        ]);
+    }
+
+    fn restore(saved: &[f64]) -> Result<Self, String> {
+        let flag = |x: f64| match x {
+            0.0 => Ok(false),
+            1.0 => Ok(true),
+            _ => Err(format!(
+                "a saved input's stability watch holds the flag {x}: expected 0 or 1"
+            )),
+        };
+        let count = saved[6];
+        if !(0.0..=f64::from(Self::BLOCK)).contains(&count) || count.fract() != 0.0 {
+            return Err(format!(
+                "a saved input's stability watch counts {count} changes: expected 0 to {}",
+                Self::BLOCK
+            ));
+        }
+        Ok(Watch {
+            largest: [saved[0], saved[1], saved[2]],
+            turned: [flag(saved[3])?, flag(saved[4])?, flag(saved[5])?],
+            count: count as u32,
+            last_change: saved[7],
+            found: flag(saved[8])?.then_some(saved[9]),
+            reported: flag(saved[10])?,
+        })
+    }
+}
+
+pub mod stability;
 
 #[cfg(test)]
 mod tests;

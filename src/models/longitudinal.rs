@@ -820,6 +820,11 @@ impl Simulation for Longitudinal {
         if let Some(notice) = self.notice.take() {
             return Some(notice);
         }
+        let [velocity, load] = &mut self.inputs;
+        let unstable = velocity.instability("vr_in", self.input_scheme);
+        if let Some(unstable) = unstable.or_else(|| load.instability("FN_in", self.input_scheme)) {
+            return Some(unstable);
+        }
         let t = self.solver.adaptive_mut()?.stiff_since()?;
         Some(super::stiff_warning(t, "dopri5", "radau5 or exponential"))
     }

@@ -1053,6 +1053,9 @@ impl Simulation for Transverse {
         if let Some(notice) = self.notice.take() {
             return Some(notice);
         }
+        if let Some(unstable) = self.vd_input.instability("vd_in", self.input_scheme) {
+            return Some(unstable);
+        }
         let (t, name) = match &mut self.solver {
             Solver::Adaptive(a) => (a.stiff_since(), "dopri5"),
             Solver::Dop853(d) => (d.stiff_since(), "dop853"),

@@ -251,3 +251,35 @@ def test_ecos_goes_on_with_the_default_after_our_error_and_hides_it(tmp_path):
     assert status == 0 and summary["ok"] and "m = -1" not in log, log
     status, summary, _, log = run_engine("ecos", case(BAD_PARAMETER, "ecos", True), tmp_path)
     assert "m = -1" in log, log
+
+
+def stiff_system(path):
+    """DriveFriction.ssp with the body held on a drive spring 100 times stiffer (kd = 9.2e7 N/m),
+    whose coupling is stable only below about 10 ms (tests/reference/drive/stability.py)."""
+    with zipfile.ZipFile(SSP) as source, zipfile.ZipFile(path, "w") as target:
+        for item in source.infolist():
+            data = source.read(item)
+            if item.filename == "SystemStructure.ssd":
+                text = data.decode()
+                extra = ('<ssv:Parameter name="kd"><ssv:Real value="92000000.0"/></ssv:Parameter>'
+                         f'<ssv:Parameter name="body"><ssv:Integer value="{enum_value("TransverseFriction", "body", "held")}"/></ssv:Parameter>')
+                anchor = '<ssv:Parameter name="drive_source">'
+                assert text.count(anchor) == 1
+                data = text.replace(anchor, extra + anchor).encode()
+            target.writestr(item, data)
+    return path
+
+
+@pytest.mark.parametrize("engine", ENGINES)
+def test_a_step_past_the_stability_bound_is_said_in_the_engine(engine, tmp_path):
+    sys.path.insert(0, str(ROOT / "tests" / "reference" / "drive"))
+    import stability
+    step = round(1.3 * stability.largest_stable_step(9.2e7, "corrected"), 9)
+    level = {"libcosim": "WARNING", "ecos": "debug"}[engine]
+    status, summary, _, log = run_engine(
+        engine, {"ssp": str(stiff_system(tmp_path / "stiff.ssp")), "step": step, "steps": 60,
+                 "record": ["friction.Fd"], "log": level}, tmp_path)
+    assert status == 0 and summary["ok"], log
+    assert "input_scheme = corrected: vd_in oscillates" in log, log
+    assert "input_scheme = corrected: F_load oscillates" in log, log
+    assert log.count("unstable at this step") == 2, log

@@ -11,6 +11,7 @@ derivative (what libcosim and ecos do), and LongitudinalFriction's two inputs.
 - a derivative the master sets takes precedence: with derivatives, every scheme gives the same bits.
 """
 import math
+import sys
 
 import pytest
 from fmpy.fmi1 import FMICallException
@@ -171,3 +172,46 @@ def test_a_masters_derivatives_take_precedence_over_every_scheme():
         runs.append(system.run(uniform(1e-4, 0.01), derivatives=True))
         system.free()
     assert runs[0] == runs[1] == runs[2]
+
+
+# -- stability -------------------------------------------------------------------------------
+
+sys.path.insert(0, str(ROOT / "tests" / "reference" / "drive"))
+import stability  # noqa: E402  (the linear analysis, tests/reference/drive/stability.py)
+
+STIFF_SPRING = 9.2e7  # kd x 100: the bound falls from seconds to about 10 ms
+
+
+def stiff_run(scheme, h, steps=60):
+    """The body held on a spring 100 times stiffer: (Fd at the end, the FMUs' warnings)."""
+    drive, friction = Slave("DriveTrain", "drive"), Slave("TransverseFriction", "friction")
+    drive.initialize(input_scheme=scheme)
+    friction.initialize(drive_source="input", va=0.0, initial="rest", vd_in=0.0, input_scheme=scheme,
+                        kd=STIFF_SPRING, body="held")
+    t = 0.0
+    for _ in range(steps):
+        v_nut, fd = drive.get("v_nut")[0], friction.get("Fd")[0]
+        friction.fmu.setReal([friction.vr["vd_in"]], [v_nut])
+        drive.fmu.setReal([drive.vr["F_load"]], [fd])
+        drive.fmu.doStep(t, h)
+        friction.fmu.doStep(t, h)
+        t += h
+    warnings = [text for slave in (drive, friction) for status, _, text in slave.messages if status == 1]
+    fd = friction.get("Fd")[0]
+    drive.free()
+    friction.free()
+    return fd, warnings
+
+
+@pytest.mark.parametrize("scheme", ["held", "extrapolated", "corrected"])
+def test_past_the_stability_bound_each_fmu_says_so_once_with_the_bound(scheme):
+    bound = stability.largest_stable_step(STIFF_SPRING, scheme)
+    fd, warnings = stiff_run(scheme, 0.8 * bound, steps=120)
+    # Below the bound: the motor stalls against the spring (at about 894 N), quietly.
+    assert warnings == [] and abs(fd - 893.5) < 0.02 * 893.5, (fd, warnings)
+    _, warnings = stiff_run(scheme, 1.3 * bound)
+    assert len(warnings) == 2, warnings  # one from each FMU, for its coupled input
+    for text, name in zip(warnings, ("F_load", "vd_in")):
+        assert f"input_scheme = {scheme}: {name} oscillates" in text, text
+        estimate = float(text.split(f"largest stable step with {scheme} is ")[1].split(" s")[0])
+        assert abs(estimate / bound - 1.0) < 0.25, (estimate, bound)

@@ -161,3 +161,57 @@ fn a_saved_history_goes_on_to_the_same_bits() {
     saved[6] = 1.5;
     assert!(y.restore(&saved).unwrap_err().contains("1.5 values"));
 }
+
+#[test]
+fn the_one_mode_loop_grows_past_each_schemes_critical_z() {
+    for scheme in [
+        InputScheme::Held,
+        InputScheme::Extrapolated,
+        InputScheme::Corrected,
+    ] {
+        let z = stability::critical(scheme);
+        assert!(stability::growth(scheme, 0.98 * z) < 1.0, "{scheme:?}");
+        assert!(stability::growth(scheme, 1.02 * z) > 1.0, "{scheme:?}");
+        // Held's amplification is |1 - z|.
+        assert!((stability::growth(InputScheme::Held, 3.5) - 2.5).abs() < 1e-12);
+        // The bound read back from the growth at twice it.
+        let growth = stability::growth(scheme, 2.0 * z);
+        let bound = stability::largest_stable_steps(scheme, 1e-3, growth)(scheme);
+        assert!((bound - 0.5e-3).abs() < 1e-9, "{scheme:?}: {bound}");
+    }
+}
+
+/// A value sequence that oscillates with the step and grows is found once, with its growth; a
+/// smooth rise, or an oscillation that decays, is not.
+#[test]
+fn the_watch_finds_a_growing_oscillation_once() {
+    let run = |value: &dyn Fn(f64) -> f64| {
+        let mut x = Extrapolator::default();
+        let mut found = vec![];
+        for k in 0..60 {
+            let t = k as f64 * 0.01;
+            x.ramp(InputScheme::Corrected, t, value(k as f64), 0.01);
+            if let Some(message) = x.instability("vd_in", InputScheme::Corrected) {
+                found.push((k, message));
+            }
+        }
+        found
+    };
+    let growing = run(&|k| 1.0 + 1e-6 * 1.3f64.powf(k) * (2.0 * k).cos());
+    assert_eq!(growing.len(), 1, "{growing:?}");
+    let (_, message) = &growing[0];
+    assert!(
+        message.contains("input_scheme = corrected: vd_in"),
+        "{message}"
+    );
+    let growth: f64 = message
+        .split("grows ")
+        .nth(1)
+        .and_then(|rest| rest.split('-').next())
+        .and_then(|number| number.parse().ok())
+        .unwrap();
+    assert!((growth - 1.3).abs() < 0.05, "{message}");
+    assert!(run(&|k| (0.1 * k).exp()).is_empty());
+    assert!(run(&|k| 0.9f64.powf(k) * (2.0 * k).cos()).is_empty());
+    assert!(run(&|k| (0.05 * k).sin()).is_empty());
+}
