@@ -10,7 +10,9 @@ derivative (what libcosim and ecos do), and LongitudinalFriction's two inputs.
 - extrapolated is second order, corrected faster (the engine tests hold the shipped one, corrected);
 - a derivative the master sets takes precedence: with derivatives, every scheme gives the same bits.
 """
+import csv
 import math
+import subprocess
 import sys
 
 import pytest
@@ -215,3 +217,20 @@ def test_past_the_stability_bound_each_fmu_says_so_once_with_the_bound(scheme):
         assert f"input_scheme = {scheme}: {name} oscillates" in text, text
         estimate = float(text.split(f"largest stable step with {scheme} is ")[1].split(" s")[0])
         assert abs(estimate / bound - 1.0) < 0.25, (estimate, bound)
+
+
+def test_the_error_plot_shows_each_scheme_in_libcosim_and_the_derivative_master(tmp_path):
+    prefix = tmp_path / "schemes"
+    done = subprocess.run([sys.executable, str(ROOT / "examples" / "input_schemes.py"), str(prefix)],
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert prefix.with_suffix(".png").stat().st_size > 10_000
+    assert prefix.with_suffix(".svg").read_text().count("<path") > 4
+    with open(prefix.with_suffix(".csv")) as f:
+        rows = list(csv.DictReader(f))
+    assert len(rows) == 401
+    largest = {name: max(float(r[name]) for r in rows) for name in rows[0] if name != "time"}
+    assert largest["Fd error, libcosim, held"] > 1e-2
+    assert 1e-4 < largest["Fd error, libcosim, extrapolated"] < 2e-4
+    assert largest["Fd error, libcosim, corrected"] < 1e-4
+    assert largest["Fd error, fmpy with output derivatives"] < 1e-4
