@@ -62,7 +62,7 @@ pub const VELOCITY_SOURCE: EnumType = EnumType {
         ("prescribed", "vr = vc + va cos(2 pi f t) (eq. 2.4)"),
         (
             "input",
-            "vr = vr_in, held over each communication step, or moving at the derivative set for it",
+            "vr = vr_in, moving at the derivative set for a communication step, else as input_scheme says",
         ),
     ],
 };
@@ -73,7 +73,7 @@ pub const NORMAL_FORCE_SOURCE: EnumType = EnumType {
         ("weight", "FN = m g: FC = mu m g and the LuGre FS as given"),
         (
             "input",
-            "FN = FN_in, held over each communication step, or moving at the derivative set for it; FC = mu FN, and FS scales with FN / (m g)",
+            "FN = FN_in, moving at the derivative set for a communication step, else as input_scheme says; FC = mu FN, and FS scales with FN / (m g)",
         ),
     ],
 };

@@ -90,7 +90,7 @@ pub const DRIVE_SOURCE: EnumType = EnumType {
         ("prescribed", "The drive's far end moves at vd"),
         (
             "input",
-            "The drive's far end moves at vd_in, held over each communication step, or moving linearly over the next one when the master sets its derivative (fmi2SetRealInputDerivatives)",
+            "The drive's far end moves at vd_in, moving linearly over the next step when the master sets its derivative (fmi2SetRealInputDerivatives), else as input_scheme says",
         ),
     ],
 };
