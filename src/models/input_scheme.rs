@@ -27,6 +27,7 @@
 
 use super::ramp::Ramp;
 use super::switch::{InputScheme, Switch};
+
 /// The numbers [`Extrapolator::save`] writes.
 pub const SAVED: usize = 12 + Watch::SAVED;
 
@@ -73,7 +74,8 @@ impl Extrapolator {
     }
 
     /// As [`Extrapolator::ramp`], holding the value over the step where the scheme's line is
-    /// not `admissible` for the model (a master's derivative is taken as it is).
+    /// not `admissible` for the model, or not finite (a master's derivative is taken as it
+    /// is).
     pub fn ramp_where(
         &mut self,
         scheme: InputScheme,
@@ -106,7 +108,9 @@ impl Extrapolator {
                     value: value + offset,
                     rate,
                 };
-                if admissible(ramp) {
+                // A step far shorter than the last ones can make the line or the debt's share
+                // overflow: such a step holds.
+                if admissible(ramp) && ramp.value.is_finite() && ramp.rate.is_finite() {
                     ramp
                 } else {
                     Ramp { value, rate: 0.0 }

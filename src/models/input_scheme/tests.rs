@@ -215,3 +215,19 @@ fn the_watch_finds_a_growing_oscillation_once() {
     assert!(run(&|k| 0.9f64.powf(k) * (2.0 * k).cos()).is_empty());
     assert!(run(&|k| (0.05 * k).sin()).is_empty());
 }
+
+#[test]
+fn a_line_that_would_overflow_holds() {
+    let mut x = Extrapolator::default();
+    let next = 1.0 + f64::EPSILON;
+    x.ramp(InputScheme::Corrected, 0.0, 0.0, 1.0);
+    x.ramp(InputScheme::Corrected, 1.0, -1e300, f64::EPSILON);
+    let ramp = x.ramp(InputScheme::Corrected, next, 1e300, 1.0);
+    assert_eq!(
+        ramp,
+        Ramp {
+            value: 1e300,
+            rate: 0.0
+        }
+    );
+}
