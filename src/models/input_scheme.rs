@@ -21,7 +21,7 @@
 //! A coupling through an input is stable only below some communication step, which depends on
 //! the partner as much as on this model (docs/coupling.md measures it against the drive spring's
 //! stiffness), and is the lower the more a scheme extrapolates. Past it the exchanged values
-//! oscillate with the step and grow. Each input watches for that ([`Watch`]) under every scheme
+//! oscillate with the step and grow. Each input watches for that under every scheme
 //! and says it once ([`Extrapolator::instability`]), with the largest stable step estimated from
 //! the growth ([`stability`]).
 
