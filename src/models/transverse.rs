@@ -745,13 +745,10 @@ impl Transverse {
                 steps_per_period: steps,
             }),
             TransverseSolver::Dopri5 | TransverseSolver::Radau5 | TransverseSolver::Dop853 => {
-                // Not vd_in's value at the build: fmi2SetFMUstate builds again with the value
-                // then, and a restored run must take the steps the first one took.
-                let scale_vd = match drive {
-                    Drive::Prescribed(v) => v,
-                    Drive::Input => 0.0,
-                };
-                let mut scale = tolerance_scales(&p, scale_vd);
+                // The parameter vd, the drive's nominal velocity, with an input drive too, not
+                // vd_in's value at the build: fmi2SetFMUstate builds again with the value then,
+                // and a restored run must take the steps the first one took.
+                let mut scale = tolerance_scales(&p, vd);
                 if trim.axial {
                     // The 1D equations leave the y axis at rest: out of the error control, so
                     // that its zeros do not dilute the others' errors.
