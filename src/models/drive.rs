@@ -8,11 +8,11 @@
 //! ```
 //!
 //! Linear with inputs that move linearly over a step (held, or at the master's derivatives, or
-//! as `input_scheme` moves them): so the state augmented with the inputs and their rates, `[i,
-//! omega, x_nut, V, F_load, V', F_load']`, obeys `z' = A z` with a constant A, and each step is exactly
-//! `z(t + h) = expm(A h) z(t)`: no step size to choose, no work limit to reach (one 7 x 7 matrix
-//! exponential per distinct step size). The motor is a source, so there is no passivity to
-//! check; the state is checked finite.
+//! as `input_scheme` moves them): so the state augmented with the inputs and their rates,
+//! `[i, omega, x_nut, V, F_load, V', F_load']`, obeys `z' = A z` with a constant A, and each step
+//! is exactly `z(t + h) = expm(A h) z(t)`: no step size to choose, no work limit to reach (one
+//! 7 x 7 matrix exponential per distinct step size). The motor is a source, so there is no
+//! passivity to check; the state is checked finite.
 
 use super::input_scheme::{self, Extrapolator};
 use super::ramp::Ramp;
