@@ -78,7 +78,11 @@ class Output:
         kind, _, window = how.partition("=")
         if kind.strip() != "mean_last" or not window:
             raise ValueError(f"output {text!r}: expected NAME or NAME:mean_last=TIME")
-        return Output(variable.strip(), Span.parse(window))
+        span = Span.parse(window)
+        if not span.value > 0:
+            raise ValueError(f"output {text!r}: the window mean_last={span} is not a time > 0 "
+                             "before the stop time")
+        return Output(variable.strip(), span)
 
     @property
     def column(self):

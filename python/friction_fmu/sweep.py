@@ -36,9 +36,34 @@ CONNECT_TIMEOUT = 10.0  # seconds; Dask's own default, 30 s, is long to wait for
 SUFFIXES = (".csv", ".png", ".svg", ".json")
 
 
+# More local processes than this per CPU only add memory and start-up time: the points are
+# CPU-bound.
+WORKERS_PER_CPU = 4
+
+
+def max_workers():
+    """The most local processes --workers takes."""
+    return WORKERS_PER_CPU * (os.cpu_count() or 1)
+
+
+def _die_with_parent(parent):
+    """A pool process's initializer: on Linux the kernel ends it (SIGTERM) when the sweep that
+    started it (`parent`, a process id) dies, however it dies, instead of leaving it to run its
+    queue out alone."""
+    if sys.platform.startswith("linux"):
+        import ctypes
+        import signal
+
+        pr_set_pdeathsig = 1
+        ctypes.CDLL(None, use_errno=True).prctl(pr_set_pdeathsig, signal.SIGTERM)
+        if os.getppid() != parent:
+            os._exit(1)  # the sweep died before the signal was asked for
+
+
 @contextlib.contextmanager
 def local_executor(workers):
-    with cf.ProcessPoolExecutor(max_workers=workers) as executor:
+    with cf.ProcessPoolExecutor(max_workers=workers, initializer=_die_with_parent,
+                                initargs=(os.getpid(),)) as executor:
         yield executor, lambda source: source
 
 
@@ -114,7 +139,8 @@ def run_sweep(fmu, plan, scheduler=None, workers=None, ship=None, progress=True,
     ship = ship or ("bytes" if scheduler is not None else "path")
     source = FmuSource.by_bytes(fmu) if ship == "bytes" else FmuSource.by_path(fmu)
     points = plan.points()
-    workers = workers or os.cpu_count()
+    # no more processes than points to run
+    workers = min(workers or os.cpu_count(), len(points))
     executor_cm = (dask_executor(scheduler, connect_timeout) if scheduler is not None
                    else local_executor(workers))
     began = time.perf_counter()
@@ -216,6 +242,15 @@ def _count(text):
     return int(text)
 
 
+def _workers(text):
+    count = _count(text)
+    if count > max_workers():
+        raise argparse.ArgumentTypeError(
+            f"{text!r}: expected at most {max_workers()} local processes ({WORKERS_PER_CPU} per "
+            f"CPU; the points are CPU-bound, so more only take memory)")
+    return count
+
+
 
 def parse_args(argv):
     p = _Parser(prog="python -m friction_fmu.sweep", description=__doc__,
@@ -233,7 +268,7 @@ def parse_args(argv):
     p.add_argument("--stop-time", help="seconds or N/PARAM (default: DefaultExperiment)")
     p.add_argument("--step", help="communication step, seconds or N/PARAM (default: "
                                   "DefaultExperiment)")
-    p.add_argument("--workers", type=_count, help="local processes (default: os.cpu_count())")
+    p.add_argument("--workers", type=_workers, help="local processes (default: os.cpu_count())")
     p.add_argument("--scheduler", help="Dask: local[:N] starts a LocalCluster of N workers "
                                        "(default: os.cpu_count()), or a scheduler address, "
                                        "e.g. tcp://host:8786")
@@ -264,8 +299,13 @@ def plan_from_args(args):
         plan.outputs = loaded.outputs or plan.outputs
         plan.stop_time = loaded.stop_time or plan.stop_time
         plan.step = loaded.step or plan.step
+    on_command_line = set()
     for text in args.grid:
         name, values = parse_assignment(text)
+        if name in on_command_line:
+            raise ValueError(f"--grid {text}: {name} is already an axis (one --grid a name, "
+                             "with all its values: --grid NAME=V1,V2,...)")
+        on_command_line.add(name)
         plan.grid[name] = values
     for text in args.set:
         name, values = parse_assignment(text)
