@@ -30,6 +30,13 @@ pub struct Orbit {
 /// The most Newton-Broyden iterations after the Jacobian.
 const MAX_ITERATIONS: usize = 12;
 
+/// How close to 1 a Floquet multiplier cannot be told from 1: the accuracy of the map's
+/// Jacobian, differenced at the tolerance COARSE over steps of its square root. Such an orbit is
+/// one of a family (a position nothing restores: every shift of it is periodic too), or so
+/// weakly attracting that the residual tolerance does not fix it (its error is the residual
+/// over 1 - multiplier).
+const NEUTRAL: f64 = 1e-3;
+
 /// Why shooting found no orbit and, where the iterations stalled short of the tolerance (a map
 /// that is not smooth, at stick-slip, holds Newton's method back), the state nearest to closing
 /// the period: a better start for the transient than the guess.
@@ -129,6 +136,12 @@ pub fn periodic_orbit(
                 + DMatrix::<f64>::identity(n, n);
             let multipliers = map_jacobian.complex_eigenvalues();
             let largest = multipliers.iter().map(|m| m.norm()).fold(0.0, f64::max);
+            if (largest - 1.0).abs() <= NEUTRAL {
+                return Err(format!(
+                    "a Floquet multiplier of the period-1 orbit is {largest:.6}, 1 to within the map's accuracy ({NEUTRAL:e}): the orbits form a family (every shift along it is periodic too, as without a restoring force) or attract too weakly to be fixed, so the one found may be any"
+                )
+                .into());
+            }
             if largest > 1.0 {
                 return Err(format!(
                     "the period-1 orbit found is unstable (a Floquet multiplier of size {largest:.3}): the motion settles elsewhere, maybe on a longer period"
