@@ -1,4 +1,5 @@
-"""The task every worker runs: one grid point, one simulation through fmpy's FMU2Slave.
+"""The task every worker runs: one grid point, one simulation through fmpy's FMU2Slave (or one
+run along given communication points, `run_series`, for a fit to a measured time series).
 
 The FMU travels as an `FmuSource`: by path (the worker reads the file itself, which needs a
 filesystem shared with the client) or as the bytes of the .fmu (works anywhere). A worker
@@ -224,8 +225,66 @@ def run_point(source, plan, point):
     extraction of the FMU is not in them). The CPU time is this thread's: a Dask worker may run
     several points at once in one process, each on its own thread, and the FMU steps on the
     calling thread."""
-    row = {"point": point.index, **point.values}
     values = {**plan.fixed, **point.values}
+
+    def simulate(fmu, lib):
+        times, samples = _simulate(fmu, lib, plan, values, plan.outputs)
+        return collect(plan.outputs, {**lib.starts, **values}, times, samples)
+
+    return _run(source, f"point{point.index}", {"point": point.index, **point.values}, simulate)
+
+
+@dataclass(frozen=True)
+class Series:
+    """A run along given communication points: `times` (increasing), the values of inputs at
+    each of them (`inputs`, name -> list; each set at the start of the step that follows),
+    parameters and constant inputs (`fixed`), and the Real outputs sampled at every point."""
+
+    times: tuple
+    inputs: dict
+    fixed: dict
+    outputs: tuple
+
+
+def run_series(source, series, index=0):
+    """One run along `series`: a row with each output's samples (a list, one per time), or its
+    status and the FMU's message, as `run_point` gives them."""
+
+    def simulate(fmu, lib):
+        return dict(zip(series.outputs, zip(*_simulate_series(fmu, lib, series))))
+
+    return _run(source, f"run{index}", {"run": index}, simulate)
+
+
+def _simulate_series(fmu, lib, series):
+    times = series.times
+    refs = [lib.variables[name].valueReference for name in series.outputs]
+    fmu.setupExperiment(startTime=times[0], stopTime=times[-1])
+    for name, value in series.fixed.items():
+        _set(fmu, lib.variables, name, value)
+    for name, values in series.inputs.items():
+        _set(fmu, lib.variables, name, values[0])
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    samples = [fmu.getReal(refs)]
+    for k in range(1, len(times)):
+        if k > 1:  # the first step's inputs went in before initialization
+            for name, values in series.inputs.items():
+                _set(fmu, lib.variables, name, values[k - 1])
+        fmu.doStep(currentCommunicationPoint=times[k - 1],
+                   communicationStepSize=times[k] - times[k - 1])
+        samples.append(fmu.getReal(refs))
+    for k, sample in enumerate(samples):
+        for name, value in zip(series.outputs, sample):
+            if not math.isfinite(value):
+                raise NoSummary(f"{name} = {value} at t = {times[k]:g} s: not a finite number")
+    return samples
+
+
+def _run(source, instance_name, row, simulate):
+    """Instantiates the FMU, runs `simulate(fmu, lib)` (a dict of results for the row) and
+    frees it. A refusal by the FMU, or results that are no finite numbers, become the row's
+    status and message; so does a warning the FMU gave. Adds the run's wall and CPU time."""
     environment = next(_ENVIRONMENTS)
     messages = _MESSAGES[environment] = []
     fmu = None
@@ -235,10 +294,9 @@ def run_point(source, plan, point):
         began, cpu = clock.perf_counter(), clock.thread_time()
         fmu = FMU2Slave(guid=lib.md.guid, unzipDirectory=lib.unzipdir,
                         modelIdentifier=lib.md.coSimulation.modelIdentifier,
-                        instanceName=f"point{point.index}")
+                        instanceName=instance_name)
         fmu.instantiate(callbacks=_callbacks(environment))
-        times, samples = _simulate(fmu, lib, plan, values, plan.outputs)
-        row.update(collect(plan.outputs, {**lib.starts, **values}, times, samples))
+        row.update(simulate(fmu, lib))
         warned = [text for status, text in messages if status == WARNING]
         row["status"], row["message"] = ("warning", " | ".join(warned)) if warned else ("ok", "")
     except NoSummary as error:  # the reason is ours: the FMU's warnings would not explain it
