@@ -2,8 +2,9 @@
 ecos (ecospy), with the engine's default fixed-step algorithm, reading Real variables at t = 0
 and after every step.
 
-SPEC (a dict): {"fmu": path} (one instance, named "m") or {"ssp": path}; "step" (s), "steps"
-(how many); "values": {"instance.variable": value} set before initialization (int for Integer,
+SPEC (a dict): {"fmu": path} (one instance, named "m") or {"ssp": path}, with "step" (s) and
+"steps" (how many); or, libcosim only, {"osp": a directory holding OspSystemStructure.xml, whose
+algorithm sets the steps}, with "stop" (s) and "max_samples" (the most steps recorded); "values": {"instance.variable": value} set before initialization (int for Integer,
 float for Real; for ecos on an SSP, the archive's parameter set instead); "record":
 ["instance.variable", ...]; "log": the engine's log level. Each function returns (whether every
 step completed, the engine's time at the end, {"time": array, variable: array}).
@@ -25,11 +26,22 @@ def run_libcosim(spec):
     from libcosimpy.CosimSlave import CosimLocalSlave
 
     log_output_level(CosimLogLevel[spec.get("log", "WARNING")])
-    step_ns = round(spec["step"] * 1e9)
-    if "ssp" in spec:
+    if "osp" in spec:
+        # the algorithm, its step sizes and the system from an OspSystemStructure.xml
+        execution = CosimExecution.from_osp_config_file(spec["osp"])
+        slaves = {s.name.decode(): s.index for s in execution.slave_infos()}
+        # ECCO reads the power bond's inputs after every step, which libcosim allows only for
+        # variables an observer exposes: without it the second step fails
+        execution.add_observer(CosimObserver.create_last_value())
+        target_ns, n = round(spec["stop"] * 1e9), spec["max_samples"]
+    elif "ssp" in spec:
+        step_ns = round(spec["step"] * 1e9)
         execution = CosimExecution.from_ssp_file(spec["ssp"], step_size=step_ns)
         slaves = {s.name.decode(): s.index for s in execution.slave_infos()}
+        target_ns, n = spec["steps"] * step_ns, spec["steps"] + 1
     else:
+        step_ns = round(spec["step"] * 1e9)
+        target_ns, n = spec["steps"] * step_ns, spec["steps"] + 1
         execution = CosimExecution.from_step_size(step_ns)
         slaves = {"m": execution.add_local_slave(CosimLocalSlave(fmu_path=spec["fmu"], instance_name="m"))}
     variables = {
@@ -46,7 +58,7 @@ def run_libcosim(spec):
     for key in spec["record"]:
         instance, name = key.split(".", 1)
         observer.start_time_series(slaves[instance], variables[instance][name].reference, CosimVariableType.REAL)
-    ok = execution.simulate_until(spec["steps"] * step_ns)
+    ok = execution.simulate_until(target_ns)
     end = execution.status().current_time / 1e9
 
     # libcosimpy 0.0.6's time_series_real_samples drops the last sample when read from step 0
@@ -55,7 +67,6 @@ def run_libcosim(spec):
         libcosimc(), "cosim_observer_slave_get_real_samples", ctypes.c_int64,
         [ctypes.POINTER(CosimObserver), ctypes.c_int, ctypes.c_uint32, ctypes.c_int64, ctypes.c_size_t,
          ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_int64), ctypes.POINTER(ctypes.c_int64)])
-    n = spec["steps"] + 1
     result = {}
     for key in spec["record"]:
         instance, name = key.split(".", 1)

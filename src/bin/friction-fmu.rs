@@ -78,6 +78,9 @@ fn build(out: &Path, libraries: &[package::Library]) -> Result<(), String> {
     }
     let path = package::ssp::write(out).map_err(|e| format!("packing the system: {e}"))?;
     println!("wrote {}", path.display());
+    let path = package::osp::write(out)
+        .map_err(|e| format!("writing the system for libcosim's ECCO: {e}"))?;
+    println!("wrote {}", path.display());
     for path in package::refresh_committed_xml()
         .map_err(|e| format!("{}: {e}", package::COMMITTED_XML_DIR))?
     {

@@ -3,6 +3,7 @@
 //! FMU also carries the file in resources/.
 
 mod documentation;
+pub mod osp;
 pub mod platforms;
 pub mod ssp;
 

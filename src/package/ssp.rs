@@ -189,6 +189,17 @@ fn component_xml(xml: &mut String, component: &Component) -> Result<(), String> 
 
 /// A value as SSV writes it, checked against the model's table.
 fn parameter_value(table: &ModelTable, name: &str, value: Value) -> Result<String, String> {
+    let (kind, value) = typed_value(table, name, value)?;
+    Ok(format!("<ssv:{kind} value=\"{value}\"/>"))
+}
+
+/// A value's type as the engines read it (a switch by its item's number, as `Integer`) and its
+/// text, checked against the model's table.
+pub fn typed_value(
+    table: &ModelTable,
+    name: &str,
+    value: Value,
+) -> Result<(&'static str, String), String> {
     let model = table.model_identifier;
     let var = table
         .by_name(name)
@@ -197,10 +208,10 @@ fn parameter_value(table: &ModelTable, name: &str, value: Value) -> Result<Strin
         (Kind::Switch { type_name, .. }, Value::Item(item)) => table
             .enum_type(type_name)
             .and_then(|t| t.value_of(item))
-            .map(|number| format!("<ssv:Integer value=\"{number}\"/>"))
+            .map(|number| ("Integer", number.to_string()))
             .ok_or_else(|| format!("{model}.{name} has no item {item}")),
         (Kind::Real { min, max, .. }, Value::Real(x)) if (min..=max).contains(&x) => {
-            Ok(format!("<ssv:Real value=\"{x:?}\"/>"))
+            Ok(("Real", format!("{x:?}")))
         }
         _ => Err(format!("{model}.{name} cannot take {value:?}")),
     }
