@@ -750,8 +750,7 @@ fn a_periodic_start_without_a_restoring_force_says_so_and_starts_from_rest() {
         let mut sim = Oscillator::new(&v, 0.0).unwrap();
         let said = sim.take_warning().unwrap_or_default();
         assert!(
-            said.contains("the orbits form a family")
-                && said.contains("starts from (u0, v0)"),
+            said.contains("the orbits form a family") && said.contains("starts from (u0, v0)"),
             "{law}: {said}"
         );
         assert_eq!((sim.state.u, sim.state.v), (v.real(vr::U0), v.real(vr::V0)));
