@@ -46,6 +46,7 @@ from .sweep import (CONNECT_TIMEOUT, _workers, dask_executor, executor_label, lo
                     local_executor, writable)
 
 SUFFIXES = (".csv", ".png", ".svg", ".json")
+SHOWN_WARNINGS = 3  # on stderr; the JSON has them all
 DIFF_STEP = 1e-3  # relative step of the central differences: far above the solvers' 1e-8 noise
 # A Jacobian whose smallest singular value is below this fraction of its largest has directions
 # the outputs cannot tell apart (parameters that act only together, or not at all).
@@ -451,6 +452,10 @@ def prepare(argv):
     """The command line and the data, checked before any run; raises Refused (ValueError) or
     OSError for the first thing wrong."""
     args = parse_args(argv)
+    try:
+        import scipy.optimize  # noqa: F401
+    except ImportError:
+        raise Refused("the fit needs scipy: pip install -e 'python[fit]'") from None
     md = check.model_description(args.fmu)
     data = fit_data.read(args.data, md)
     fixed = {}
@@ -472,8 +477,13 @@ def prepare(argv):
     notes = []
     outputs = [Output(o) for o in data.measured]
     grid = {n: list(vs) for n, vs in data.settings.items()}
-    check.plan(md, Plan(grid=grid, fixed=fixed, outputs=outputs, stop_time=stop, step=step))
-    check.ranges(md, Plan(grid=grid, fixed=fixed))
+    try:  # the data's settings: their values and declared ranges, the file named
+        check.plan(md, Plan(grid=grid))
+        check.ranges(md, Plan(grid=grid))
+    except ValueError as error:
+        raise Refused(f"{data.path}: {error}") from None
+    check.plan(md, Plan(fixed=fixed, outputs=outputs, stop_time=stop, step=step))
+    check.ranges(md, Plan(fixed=fixed))
     plan = None
     if data.form == "series":
         if stop is not None or step is not None:
@@ -677,8 +687,11 @@ def main(argv=None):
     print(f"residual norm {report['residual_norm']:.4g} (at the start "
           f"{report['residual_norm_at_start']:.4g}); {report['fmu_runs']} FMU runs in "
           f"{report['wall_time_s']:.2f} s on {label}")
-    for text in report["warnings"]:
+    for text in report["warnings"][:SHOWN_WARNINGS]:
         print(f"warning: the FMU said: {text}", file=sys.stderr)
+    if len(report["warnings"]) > SHOWN_WARNINGS:
+        print(f"warning: and {len(report['warnings']) - SHOWN_WARNINGS} more warnings, in "
+              f"{command.paths['.json']}", file=sys.stderr)
     if not report["converged"]:
         print(f"error: the fit did not converge: {run['result'].message}", file=sys.stderr)
     for path in command.paths.values():
