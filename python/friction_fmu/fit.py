@@ -641,7 +641,8 @@ def main(argv=None):
     args, problem = command.args, command.problem
     label = executor_label(args.scheduler, command.workers)
     if not args.quiet:
-        what = (f"{command.data.rows} experiments" if command.data.form == "table"
+        rows = command.data.rows
+        what = (f"{rows} experiment{'s' * (rows != 1)}" if command.data.form == "table"
                 else f"a time series of {command.data.rows} times")
         notes = "".join(f"; {n}" for n in command.notes)
         print(f"fitting {', '.join(p.name for p in problem.parameters)} of "

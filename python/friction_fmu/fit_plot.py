@@ -46,8 +46,9 @@ def figure(data, fitted, report, model, units):
             bottom.vlines(x, 0.0, residuals, color=FITTED.color)
             bottom.plot(x, residuals, color=FITTED.color, marker=FITTED.marker,
                         linestyle="None")
-        bottom.set_ylabel("fitted - measured")
-        bottom.set_xlabel(label(x_name, units))
+        bottom.set_ylabel(f"fitted - measured ({units[output]})" if output in units
+                          else "fitted - measured")
+        bottom.set_xlabel(label(x_name, {**units, "time": "s"}))
         rms = report["residuals"][output]["rms"]
         top.set_title(f"{output}: rms residual {heatmap.plain(_sig(rms))}"
                       f"{' ' + units[output] if output in units else ''}")
