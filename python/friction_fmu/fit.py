@@ -346,9 +346,6 @@ def singular(jac, names, values):
                           "no measured output); fit other parameters, or data that depend on "
                           f"{name}")
     s = np.linalg.svd(jac, compute_uv=False)
-    if len(names) > jac.shape[0]:
-        raise Refused(f"{len(names)} parameters from {jac.shape[0]} measured values: the "
-                      "Jacobian is singular; give more data or fewer --fit")
     if s[-1] < SINGULAR * s[0]:
         _, _, vt = np.linalg.svd(jac)
         together = [n for n, c in zip(names, vt[-1]) if abs(c) > 0.1]
@@ -364,11 +361,12 @@ def statistics(result, objective, measured_count):
     dof = measured_count - n
     jac = result.jac
     _, s, vt = np.linalg.svd(jac, full_matrices=False)
-    inverse = (vt.T / s**2) @ vt
-    s2 = 2 * result.cost / dof if dof > 0 else math.nan
-    covariance = s2 * inverse * np.outer(objective.scale, objective.scale)
-    stderr = np.sqrt(np.diag(covariance))
-    with np.errstate(invalid="ignore", divide="ignore"):
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        # a direction the data no longer fix at the fit (s = 0) has an infinite error
+        inverse = (vt.T / s**2) @ vt
+        s2 = 2 * result.cost / dof if dof > 0 else math.nan
+        covariance = s2 * inverse * np.outer(objective.scale, objective.scale)
+        stderr = np.sqrt(np.diag(covariance))
         d = np.sqrt(np.diag(inverse))
         correlation = inverse / np.outer(d, d)
     return stderr, correlation, dof
@@ -473,6 +471,10 @@ def prepare(argv):
         parameter = parse_fit(text, md, taken)
         taken[parameter.name] = "another --fit"
         parameters.append(parameter)
+    count = sum(len(vs) for vs in data.measured.values())
+    if len(parameters) > count:
+        raise Refused(f"{len(parameters)} parameters to fit from {count} measured value"
+                      f"{'s' * (count != 1)} in {data.path}: give more data or fewer --fit")
     stop, step = Span.parse(args.stop_time), Span.parse(args.step)
     notes = []
     outputs = [Output(o) for o in data.measured]

@@ -242,6 +242,8 @@ def test_refusals_before_any_run(tmp_path, capsys, monkeypatch, table):
     refused(capsys, monkeypatch, [*args, "--fit", "alpha=7:0.5:5"], "start 7", "alpha <= 5")
     refused(capsys, monkeypatch, [*args, "--fit", "va=0.2:-1:1"], "declared range")
     refused(capsys, monkeypatch, [*args, "--fit", "vc=0.2"], "vc is also given by")
+    refused(capsys, monkeypatch, [*args, "--fit", "kt=5e4", "--fit", "alpha=1", "--fit",
+                                  "mu=0.1"], "3 parameters to fit from 2 measured values")
     refused(capsys, monkeypatch, [*args, "--fit", "kt=1", "--set", "lw=dahl"], "'lw'")
     refused(capsys, monkeypatch, [*args, "--fit", "kt=1", "--set", "law=stribeck"],
             "law = 'stribeck'", "dahl (2)")
@@ -357,3 +359,12 @@ def test_dask_fits_as_local_processes(tmp_path, variant_local):
     assert report["executor"] == "a Dask LocalCluster of 2 workers"
     assert report["parameters"] == variant_local["parameters"]
     assert report["fmu_runs"] == variant_local["fmu_runs"]
+
+
+def test_a_fit_stopped_by_max_evaluations_is_written_and_exits_1(tmp_path, capsys, table):
+    status = fit.main([*base(table, tmp_path), "--set", "law=dahl", "--stop-time", "1/f",
+                       "--fit", "kt=5e4", "--max-evaluations", "1", "--quiet"])
+    err = capsys.readouterr().err
+    assert status == 1 and "did not converge" in err
+    report = json.loads((tmp_path / "r.json").read_text())
+    assert report["converged"] is False and report["evaluations"] == 1
