@@ -42,8 +42,8 @@ class Data:
 
 def read(path, md):
     """The CSV at `path` checked against `md` (fmpy's model description)."""
-    with open(path, newline="") as handle:
-        lines = [(reader_line, row) for reader_line, row in _rows(handle)]
+    with open(path, newline="", encoding="utf-8-sig") as handle:  # -sig: a spreadsheet's BOM
+        lines = list(_rows(handle))
     if not lines:
         raise ValueError(f"{path}: empty: expected a header naming the columns (parameters or "
                          "inputs the experiments set, the outputs they measured; `time` for a "
