@@ -219,4 +219,21 @@ mod tests {
         let refused = periodic_orbit(&[0.5], (&[1.0], &[false]), 1e-10, &mut repelling);
         assert!(refused.unwrap_err().why.contains("unstable"));
     }
+
+    /// A multiplier the differenced map cannot tell from 1 (a family of orbits, as along a
+    /// coordinate nothing restores, to the differences' noise), on either side of it, is
+    /// refused; 0.99 (the test above) is not.
+    #[test]
+    fn a_multiplier_within_the_maps_accuracy_of_1_is_refused() {
+        for multiplier in [0.9995, 1.00005] {
+            let mut map =
+                |y: &[f64], _: f64| Ok(vec![multiplier * y[0] + (1.0 - multiplier) * 2.0]);
+            let refused = periodic_orbit(&[0.0], (&[1.0], &[false]), 1e-10, &mut map);
+            let why = refused.unwrap_err().why;
+            assert!(
+                why.contains("the orbits form a family"),
+                "{multiplier}: {why}"
+            );
+        }
+    }
 }

@@ -726,33 +726,3 @@ fn piecewise_on_a_narrow_band_says_it_is_stiff() {
         }
     }
 }
-
-/// Without a restoring force (k = 0) every orbit shifted in u is periodic too (a Floquet
-/// multiplier of 1): the periodic start says so and starts from (u0, v0), whose transient
-/// settles as from rest.
-#[test]
-fn a_periodic_start_without_a_restoring_force_says_so_and_starts_from_rest() {
-    use crate::models::oscillator::table::INITIAL;
-    for law in [
-        "linear",
-        "trigonometric",
-        "linear_stiction",
-        "trigonometric_stiction",
-        "exact",
-        "exact_stiction",
-    ] {
-        let mut v = values(law);
-        v.set(vr::K, 0.0);
-        v.set(
-            vr::INITIAL,
-            f64::from(INITIAL.value_of("periodic").unwrap()),
-        );
-        let mut sim = Oscillator::new(&v, 0.0).unwrap();
-        let said = sim.take_warning().unwrap_or_default();
-        assert!(
-            said.contains("the orbits form a family") && said.contains("starts from (u0, v0)"),
-            "{law}: {said}"
-        );
-        assert_eq!((sim.state.u, sim.state.v), (v.real(vr::U0), v.real(vr::V0)));
-    }
-}
