@@ -281,6 +281,11 @@ impl Oscillator {
     /// the one-period map ([`crate::solve::shooting`]) with this simulation's law and solver, from
     /// a period after (u0, v0). The periods it integrates count in [`Oscillator::work`].
     fn settle_on_orbit(&mut self, values: &ValueSet, scope: &Scope) -> Result<(), String> {
+        // Without a spring u enters no force: the map's Jacobian has a zero column (to the
+        // differences' noise, so Newton's method would step anywhere along it).
+        if values.real(vr::K) == 0.0 {
+            return Err("with k = 0 no spring holds the body, so every orbit shifted in u is an orbit too (a Floquet multiplier of 1) and the one the motion settles on depends on where it starts".into());
+        }
         let period = self.amplitude.period;
         let start_time = self.state.t;
         let rtol = values.real(vr::RTOL);

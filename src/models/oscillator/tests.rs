@@ -565,6 +565,37 @@ fn a_periodic_start_is_steady_from_the_first_period() {
     assert!(refused.contains("force_source = prescribed"), "{refused}");
 }
 
+/// With k = 0 nothing holds the body where it is: every orbit shifted in u is an orbit too (a
+/// Floquet multiplier of 1), and which one the motion settles on only the transient from
+/// (u0, v0) knows. The periodic start says so and runs that transient: the same motion as a
+/// start from (u0, v0), not an orbit at an offset Newton's method picked (u = -5.85e8 m).
+#[test]
+fn a_periodic_start_without_a_spring_says_so_and_runs_the_transient() {
+    use crate::models::oscillator::table::INITIAL;
+    for law in ["trigonometric", "exact"] {
+        let mut v = values(law);
+        v.set(vr::K, 0.0);
+        let mut from_rest = Oscillator::new(&v, 0.0).unwrap();
+        v.set(
+            vr::INITIAL,
+            f64::from(INITIAL.value_of("periodic").unwrap()),
+        );
+        let mut sim = Oscillator::new(&v, 0.0).unwrap();
+        let said = sim.take_warning().unwrap_or_default();
+        assert!(
+            said.contains("k = 0") && said.contains("goes through the transient"),
+            "{law}: {said}"
+        );
+        let period = sim.amplitude.period;
+        for _ in 0..5 {
+            sim.do_step(period, &v).unwrap();
+            from_rest.do_step(period, &v).unwrap();
+        }
+        assert_eq!(sim.state(), from_rest.state(), "{law}");
+        assert!(sim.amplitude.last < 20.0, "{law}: {}", sim.amplitude.last);
+    }
+}
+
 /// Communication steps far shorter than radau5's: the calls that end inside a step taken ahead
 /// read its polynomial, so a hundred calls of 1e-4 s cost about one step, and every point read
 /// that way is within the tolerance of a run at rtol 1e-12 (calling every 0.1 s), as a run at
