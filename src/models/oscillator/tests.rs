@@ -649,6 +649,44 @@ fn short_communication_steps_read_a_step_taken_ahead() {
     );
 }
 
+/// During the first period u_amplitude is max |u| so far, and the calls that read a step taken
+/// ahead must count the part of it they have read (they left it 7.5e-2 m below |u| at 1e-4 s
+/// steps). Oracle: dopri5 at rtol = atol = 1e-12, which takes no step ahead, read every 1/16 s;
+/// and max |u| so far is never below |u| now.
+#[test]
+fn the_amplitude_so_far_counts_what_is_read_from_a_step_taken_ahead() {
+    let v = values("trigonometric");
+    let mut reference = with_solver("trigonometric", "dopri5");
+    reference.set(vr::RTOL, 1e-12);
+    reference.set(vr::ATOL, 1e-12);
+    let mut sim = Oscillator::new(&v, 0.0).unwrap();
+    let mut oracle = Oscillator::new(&reference, 0.0).unwrap();
+    let (h, per_point) = (1e-4, 625);
+    let mut read_ahead = 0;
+    let mut worst: f64 = 0.0;
+    for i in 1..=60_000 {
+        sim.do_step(h, &v).unwrap();
+        read_ahead += usize::from(sim.ahead.is_some());
+        if sim.amplitude.completed > 0 {
+            break;
+        }
+        assert!(
+            sim.amplitude() >= sim.state.u.abs(),
+            "t = {}: u_amplitude {} below |u| = {}",
+            sim.time(),
+            sim.amplitude(),
+            sim.state.u.abs()
+        );
+        if i % per_point == 0 {
+            oracle.do_step(h * per_point as f64, &reference).unwrap();
+            worst = worst.max((sim.amplitude() - oracle.amplitude()).abs());
+        }
+    }
+    assert!(read_ahead > 10_000, "{read_ahead} calls read a step ahead");
+    // The tolerance asked, atol + rtol |u| (1e-9 each), at |u| up to 10 m.
+    assert!(worst < 1.1e-8, "u_amplitude so far {worst:e} m off");
+}
+
 /// A state saved while a step taken ahead is being read holds that step: restored, the run
 /// goes on to the same bits.
 #[test]
