@@ -76,7 +76,21 @@ def local_cluster_size(scheduler):
         return os.cpu_count()
     if not count.isdigit() or int(count) < 1:
         raise ValueError(f"--scheduler {scheduler}: expected local or local:N, N >= 1 workers")
+    if int(count) > max_workers():
+        raise ValueError(f"--scheduler {scheduler}: expected at most {max_workers()} worker "
+                         f"processes ({WORKERS_PER_CPU} per CPU; the points are CPU-bound, so "
+                         "more only take memory)")
     return int(count)
+
+
+def require_distributed(scheduler):
+    """Refuses a Dask scheduler where Dask's `distributed` is not installed, in a line instead
+    of the import's traceback."""
+    try:
+        import distributed  # noqa: F401
+    except ImportError:
+        raise ValueError(f"--scheduler {scheduler} needs Dask's distributed, which is not "
+                         "installed here: pip install -e 'python[dask]'") from None
 
 
 def executor_label(scheduler, workers):
@@ -372,6 +386,8 @@ def prepare(argv):
         raise ValueError("--workers sizes the local process pool: with --scheduler, give "
                          "local:N or size the cluster")
     local_cluster_size(args.scheduler)  # refuses a malformed local:N
+    if args.scheduler is not None:
+        require_distributed(args.scheduler)
     out = args.out or preset.get("out", "fmu-out/sweeps/sweep")
     paths = out_paths(out, pathlib.Path(fmu).stem)
     writable(paths, out)

@@ -281,6 +281,11 @@ impl Oscillator {
     /// the one-period map ([`crate::solve::shooting`]) with this simulation's law and solver, from
     /// a period after (u0, v0). The periods it integrates count in [`Oscillator::work`].
     fn settle_on_orbit(&mut self, values: &ValueSet, scope: &Scope) -> Result<(), String> {
+        // Without a spring u enters no force: the map's Jacobian has a zero column (to the
+        // differences' noise, so Newton's method would step anywhere along it).
+        if values.real(vr::K) == 0.0 {
+            return Err("with k = 0 no spring holds the body, so every orbit shifted in u is an orbit too (a Floquet multiplier of 1) and the one the motion settles on depends on where it starts".into());
+        }
         let period = self.amplitude.period;
         let start_time = self.state.t;
         let rtol = values.real(vr::RTOL);
@@ -544,8 +549,7 @@ impl Oscillator {
         };
         let slack = self.amplitude.slack(t_end);
         if t_end < ahead.end[0] - slack {
-            let y = ahead.step.at(t_end);
-            self.set_motion(t_end, &y);
+            self.read_step(&ahead.step, t_end);
             return true;
         }
         self.ahead = None;
@@ -558,6 +562,34 @@ impl Oscillator {
         } else {
             false
         }
+    }
+
+    /// Moves the motion to `t_end` along `step`, which holds it from the motion's time on, and
+    /// counts the largest |u| on the way in the period's amplitude: before the first period
+    /// ends u_amplitude is max |u| so far, which the step's end ([`Ahead::largest`]) is not.
+    fn read_step(&mut self, step: &StepPolynomial, t_end: f64) {
+        let (t0, u0, v0) = (self.state.t, self.state.u, self.state.v);
+        let y = step.at(t_end);
+        let mut largest = u0.abs().max(y[0].abs());
+        // |u| peaks inside only where u' changes sign: there, by bisection on the polynomial
+        // (sign changes of u' on it are far apart against a call's span).
+        if v0 * y[1] < 0.0 {
+            let (mut a, mut b) = (t0, t_end);
+            for _ in 0..60 {
+                let middle = 0.5 * (a + b);
+                if middle <= a || middle >= b {
+                    break;
+                }
+                if step.at(middle)[1] * v0 > 0.0 {
+                    a = middle;
+                } else {
+                    b = middle;
+                }
+            }
+            largest = largest.max(step.at(0.5 * (a + b))[0].abs());
+        }
+        self.set_motion(t_end, &y);
+        self.amplitude.running = self.amplitude.running.max(largest);
     }
 
     /// (t, u, u', W) from `y` = (u, u', W); W only where it is integrated.
@@ -600,7 +632,11 @@ impl Oscillator {
         else {
             return Ok(false);
         };
-        let mut readable = step.h > 0.0 && step.t <= t_end;
+        // The step holds t_end, and the way there: from the call's start (or from where u' has
+        // not changed sign since, so |u| peaks only at the ends), for the amplitude so far.
+        let mut readable = step.h > 0.0
+            && step.t <= t_end
+            && (step.t <= before.t || before.v * step.at(step.t)[1] >= 0.0);
         if readable {
             let error = step.interior_error(&*equations, radau, &mut self.work);
             self.ahead_limit = step.h * (0.9 * error.max(1e-10).powf(-0.25)).clamp(0.2, 4.0);
@@ -617,7 +653,14 @@ impl Oscillator {
             end: [s.t, s.u, s.v, s.dissipated],
             largest,
         });
-        self.set_motion(t_end, &step.at(t_end));
+        // From the step's start: before it, if there is a before, |u| grew or shrank monotonically.
+        self.state = before;
+        if step.t > before.t {
+            let y = step.at(step.t);
+            self.amplitude.running = self.amplitude.running.max(y[0].abs());
+            self.set_motion(step.t, &y);
+        }
+        self.read_step(&step, t_end);
         Ok(true)
     }
 

@@ -430,6 +430,7 @@ def test_scheduler_that_does_not_answer_is_refused(tmp_path, capsys):
     (["--scheduler", "local:0"], "--scheduler local:0: expected local or local:N, N >= 1"),
     (["--scheduler", "local:two"], "--scheduler local:two: expected local or local:N"),
     (["--scheduler", "local:2", "--workers", "2"], "--workers sizes the local process pool"),
+    (["--scheduler", "local:100000"], "--scheduler local:100000: expected at most"),
     (["--connect-timeout", "nan"], "argument --connect-timeout: 'nan': expected a finite number of "
                                    "seconds > 0"),
 ])
@@ -437,6 +438,19 @@ def test_scheduler_arguments_are_checked(tmp_path, capsys, extra, said):
     out = tmp_path / "refused"
     message = _refusal(capsys, [fmu_path(MODEL), *SMALL_PLAN, "--out", str(out), *extra], out)
     assert said in message
+
+
+@pytest.mark.parametrize("scheduler", ["tcp://127.0.0.1:1", "local:2"])
+def test_a_scheduler_without_distributed_is_refused_in_a_line(tmp_path, capsys, monkeypatch,
+                                                              scheduler):
+    """Where Dask's distributed is not installed (None in sys.modules makes its import fail),
+    --scheduler is refused in one line that says what to install, not with the traceback."""
+    monkeypatch.setitem(sys.modules, "distributed", None)
+    out = tmp_path / "refused"
+    message = _refusal(capsys, [fmu_path(MODEL), *SMALL_PLAN, "--scheduler", scheduler,
+                                "--out", str(out)], out)
+    assert message == (f"error: --scheduler {scheduler} needs Dask's distributed, which is not "
+                       "installed here: pip install -e 'python[dask]'")
 
 
 def test_a_summary_without_a_finite_value_fails_its_point(tmp_path):

@@ -565,6 +565,37 @@ fn a_periodic_start_is_steady_from_the_first_period() {
     assert!(refused.contains("force_source = prescribed"), "{refused}");
 }
 
+/// With k = 0 nothing holds the body where it is: every orbit shifted in u is an orbit too (a
+/// Floquet multiplier of 1), and which one the motion settles on only the transient from
+/// (u0, v0) knows. The periodic start says so and runs that transient: the same motion as a
+/// start from (u0, v0), not an orbit at an offset Newton's method picked (u = -5.85e8 m).
+#[test]
+fn a_periodic_start_without_a_spring_says_so_and_runs_the_transient() {
+    use crate::models::oscillator::table::INITIAL;
+    for law in ["trigonometric", "exact"] {
+        let mut v = values(law);
+        v.set(vr::K, 0.0);
+        let mut from_rest = Oscillator::new(&v, 0.0).unwrap();
+        v.set(
+            vr::INITIAL,
+            f64::from(INITIAL.value_of("periodic").unwrap()),
+        );
+        let mut sim = Oscillator::new(&v, 0.0).unwrap();
+        let said = sim.take_warning().unwrap_or_default();
+        assert!(
+            said.contains("k = 0") && said.contains("goes through the transient"),
+            "{law}: {said}"
+        );
+        let period = sim.amplitude.period;
+        for _ in 0..5 {
+            sim.do_step(period, &v).unwrap();
+            from_rest.do_step(period, &v).unwrap();
+        }
+        assert_eq!(sim.state(), from_rest.state(), "{law}");
+        assert!(sim.amplitude.last < 20.0, "{law}: {}", sim.amplitude.last);
+    }
+}
+
 /// Communication steps far shorter than radau5's: the calls that end inside a step taken ahead
 /// read its polynomial, so a hundred calls of 1e-4 s cost about one step, and every point read
 /// that way is within the tolerance of a run at rtol 1e-12 (calling every 0.1 s), as a run at
@@ -616,6 +647,44 @@ fn short_communication_steps_read_a_step_taken_ahead() {
         "{} steps for {calls} calls",
         sim.work.steps
     );
+}
+
+/// During the first period u_amplitude is max |u| so far, and the calls that read a step taken
+/// ahead must count the part of it they have read (they left it 7.5e-2 m below |u| at 1e-4 s
+/// steps). Oracle: dopri5 at rtol = atol = 1e-12, which takes no step ahead, read every 1/16 s;
+/// and max |u| so far is never below |u| now.
+#[test]
+fn the_amplitude_so_far_counts_what_is_read_from_a_step_taken_ahead() {
+    let v = values("trigonometric");
+    let mut reference = with_solver("trigonometric", "dopri5");
+    reference.set(vr::RTOL, 1e-12);
+    reference.set(vr::ATOL, 1e-12);
+    let mut sim = Oscillator::new(&v, 0.0).unwrap();
+    let mut oracle = Oscillator::new(&reference, 0.0).unwrap();
+    let (h, per_point) = (1e-4, 625);
+    let mut read_ahead = 0;
+    let mut worst: f64 = 0.0;
+    for i in 1..=60_000 {
+        sim.do_step(h, &v).unwrap();
+        read_ahead += usize::from(sim.ahead.is_some());
+        if sim.amplitude.completed > 0 {
+            break;
+        }
+        assert!(
+            sim.amplitude() >= sim.state.u.abs(),
+            "t = {}: u_amplitude {} below |u| = {}",
+            sim.time(),
+            sim.amplitude(),
+            sim.state.u.abs()
+        );
+        if i % per_point == 0 {
+            oracle.do_step(h * per_point as f64, &reference).unwrap();
+            worst = worst.max((sim.amplitude() - oracle.amplitude()).abs());
+        }
+    }
+    assert!(read_ahead > 10_000, "{read_ahead} calls read a step ahead");
+    // The tolerance asked, atol + rtol |u| (1e-9 each), at |u| up to 10 m.
+    assert!(worst < 1.1e-8, "u_amplitude so far {worst:e} m off");
 }
 
 /// A state saved while a step taken ahead is being read holds that step: restored, the run
