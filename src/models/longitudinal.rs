@@ -167,6 +167,20 @@ fn displacement(source: Velocity, clock: Clock, input: Ramp, t0: f64, t: f64) ->
     slid_from(source, clock, input, t0)(t - t0)
 }
 
+/// What a periodic start cannot promise for LuGre's first period with a fixed-step solver,
+/// if anything: its FT_mean holds sigma1 f (z(T) - z(0)), 0 on the orbit, where z(T) is the
+/// run's and z(0) the shooting's, each to the grid's error in z. Calls inside the period cut
+/// the run's sub-steps elsewhere than the shooting's, and the difference reaches FT_mean
+/// multiplied by sigma1 f/sigma0 (the adaptive solvers take the tolerance over that gain).
+fn first_period_damping(law: &LuGre, f: f64) -> Option<String> {
+    let gain = law.sigma1 * f / law.sigma0;
+    (gain > 1.0).then(|| {
+        format!(
+            "initial = periodic: the first period's FT_mean holds sigma1 f (z(T) - z(0)), 0 on the orbit, which multiplies the fixed-step solver's error in z by sigma1 f/sigma0 = {gain:.3e} where calls inside the period cut the sub-steps elsewhere than the shooting did (more steps_per_period shrink it); from the second period on, where the calls repeat each period, it cancels"
+        )
+    })
+}
+
 /// The distance slid from `t0` to `t0 + tau`, as a function of tau (the prescribed velocity's sine
 /// in turns, as the velocity's cosine).
 fn slid_from(source: Velocity, clock: Clock, input: Ramp, t0: f64) -> impl Fn(f64) -> f64 {
@@ -211,6 +225,8 @@ impl Longitudinal {
                     sim.notice = Some(format!(
                         "initial = periodic: {why}; the run starts from rest instead and goes through the transient"
                     ));
+                } else if let (Law::LuGre(law), true) = (sim.law, sim.solver.fixed_step()) {
+                    sim.notice = first_period_damping(&law, sim.f);
                 }
             }
         }
@@ -242,7 +258,15 @@ impl Longitudinal {
             result?;
             Ok(vec![sim.z])
         };
-        let scale = (self.fc / self.stiffness()).min(self.slip_per_period());
+        // LuGre's damping force sigma1 z' adds sigma1 f (z(T) - z(0)) to the first period's
+        // FT_mean: the residual in z must close to FT_mean's tolerance through that factor too.
+        let damping = match self.law {
+            Law::LuGre(law) => self.fc / (law.sigma1 * self.f),
+            _ => f64::INFINITY,
+        };
+        let scale = (self.fc / self.stiffness())
+            .min(self.slip_per_period())
+            .min(damping);
         let orbit = map(&[0.0], 1e-6).and_then(|guess| {
             shooting::periodic_orbit(&guess, (&[scale], &[false]), rtol, &mut map)
                 .map_err(String::from)
@@ -1217,6 +1241,61 @@ mod tests {
                 (first / want - 1.0).abs() < 1e-6,
                 "{law} {kt:?}: {first} vs {want}"
             );
+        }
+    }
+
+    /// LuGre's damping force sigma1 z' adds sigma1 f (z(T) - z(0)) to a period's FT_mean: 0 on
+    /// the orbit, but in the first period after a periodic start it multiplies the shooting's
+    /// residual in z by sigma1 f, which must then close to FT_mean's tolerance, not z's (radau5
+    /// at sigma1 = 1e4 was 1.1e-4 of FT_mean off with one call a period, where the steps are
+    /// the shooting's own). Oracle: the transient from rest after 100 periods (the bristle
+    /// settles within one). The adaptive solvers hold z to the tolerance over that gain, so
+    /// 64 calls a period, whose steps are not the shooting's, meet it too (dopri5 was 2.0e-6 of
+    /// FT_mean off at sigma1 = 1e3); the exponential solver's grid error it cannot close, and
+    /// says so.
+    #[test]
+    fn a_periodic_start_closes_the_lugre_damping_term() {
+        use crate::models::longitudinal::table::INITIAL;
+        let fc = 0.1 * 0.02 * 9.81;
+        for solver in ["exponential", "dopri5", "radau5"] {
+            for sigma1 in [0.0, 1e3, 1e4] {
+                let mut v = values("lugre", 0.146);
+                v.set(vr::SOLVER, f64::from(SOLVER.value_of(solver).unwrap()));
+                v.set(vr::SIGMA1, sigma1);
+                let steady = steady_mean_force(&v, 100).unwrap();
+                v.set(
+                    vr::INITIAL,
+                    f64::from(INITIAL.value_of("periodic").unwrap()),
+                );
+                let mut sim = Longitudinal::new(&v, 0.0).unwrap();
+                let said = sim.take_warning();
+                assert_eq!(
+                    said.is_some(),
+                    sigma1 > 0.0 && solver == "exponential",
+                    "{solver}, sigma1 {sigma1}: {said:?}"
+                );
+                if let Some(said) = said {
+                    assert!(said.contains("first period"), "{said}");
+                }
+                let mut calls_64 = sim.clone();
+                sim.do_step(1.0 / sim.f, &v).unwrap();
+                for _ in 0..64 {
+                    calls_64.do_step(1.0 / sim.f / 64.0, &v).unwrap();
+                }
+                // The grid's error in z times sigma1 f/sigma0, which the warning says.
+                let firsts = if solver == "exponential" {
+                    vec![sim.mean_force()]
+                } else {
+                    vec![sim.mean_force(), calls_64.mean_force()]
+                };
+                for first in firsts {
+                    assert!(
+                        (first - steady).abs() < 3e-8 * fc,
+                        "{solver}, sigma1 {sigma1}: {first} vs {steady} ({:.1e} of FC)",
+                        (first - steady) / fc
+                    );
+                }
+            }
         }
     }
 
