@@ -804,7 +804,8 @@ impl Simulation for Longitudinal {
             // The call ends inside a sub-step: its next cut lies beyond (past round-off).
             let open =
                 next == t_end && self.pending_allowed() && cut > t_end + self.mean.slack(t_end);
-            self.substep(t, next, open)?;
+            self.substep(t, next, open)
+                .map_err(|e| super::from_step_start(e, self.t))?;
             within_step_budget(&self.work, &at_start, next)?;
             t = next;
         }
@@ -1328,6 +1329,30 @@ mod tests {
             assert!(
                 (first - steady).abs() < 1e-8 * fc,
                 "{solver}: {first} vs {steady}"
+            );
+        }
+    }
+
+    /// The solvers count time from the communication step's start: a message of theirs says
+    /// so, and where that start is ("the step fell to 6.7e-21 s at t = 0e0" was all a step
+    /// from 1e-5 s said).
+    #[test]
+    fn a_solver_message_says_where_its_time_starts() {
+        for solver in ["dopri5", "radau5"] {
+            let mut v = values("lugre", 0.146);
+            v.set(vr::SOLVER, f64::from(SOLVER.value_of(solver).unwrap()));
+            v.set(vr::VELOCITY_SOURCE, 2.0);
+            v.set(vr::KT, 1e15);
+            v.set(vr::TOLERANCE, 1e-14);
+            let mut sim = Longitudinal::new(&v, 0.0).unwrap();
+            sim.do_step(1e-5, &v).unwrap();
+            v.set(vr::VR_IN, 1e3);
+            let said = sim.do_step(1e-5, &v).unwrap_err();
+            assert!(
+                said.contains("at t = 0e0") && said.ends_with(
+                    "(the solver's times count from the communication step's start, t = 0.00001 s)"
+                ),
+                "{solver}: {said}"
             );
         }
     }
