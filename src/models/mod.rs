@@ -115,6 +115,14 @@ pub fn clock_warning(t: f64, (period, tolerance): (f64, f64)) -> Option<String> 
     })
 }
 
+/// A solver's failure, whose times count from the communication step's start (the equations'
+/// time starts there, so the clock's round-off does not cut the steps): says so, and where.
+pub fn from_step_start(message: String, start: f64) -> String {
+    format!(
+        "{message} (the solver's times count from the communication step's start, t = {start} s)"
+    )
+}
+
 /// Whether `[start, end]` is a few ulps of the absolute time long: sub-step ends (a period's
 /// boundary, a kink) that met in the clock's round-off. Nothing happens over it that the clock
 /// resolves, and a solver counting time from the step's start would take it for a real interval.

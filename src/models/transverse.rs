@@ -1008,7 +1008,8 @@ impl Simulation for Transverse {
                 continue;
             }
             behind = None;
-            self.substep(origin, (t, next), vd)?;
+            self.substep(origin, (t, next), vd)
+                .map_err(|e| super::from_step_start(e, origin))?;
             t = next;
         }
         self.t = t_end;

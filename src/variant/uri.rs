@@ -9,13 +9,16 @@ pub fn file_path(uri: &str) -> Result<PathBuf, String> {
     if uri.starts_with('/') {
         return Ok(PathBuf::from(uri));
     }
+    // The scheme is case-insensitive (RFC 3986, 3.1): FILE: is file:.
     let rest = uri
-        .strip_prefix("file:")
+        .get(..5)
+        .filter(|scheme| scheme.eq_ignore_ascii_case("file:"))
+        .map(|_| &uri[5..])
         .ok_or_else(|| format!("\"{uri}\" is not a file: URI: expected file:///..."))?;
     let rest = if let Some(authority) = rest.strip_prefix("//") {
         let slash = authority.find('/').unwrap_or(authority.len());
         let host = &authority[..slash];
-        if !host.is_empty() && host != "localhost" {
+        if !host.is_empty() && !host.eq_ignore_ascii_case("localhost") {
             return Err(format!(
                 "\"{uri}\" names the host \"{host}\": expected a local file: URI"
             ));
@@ -73,6 +76,11 @@ mod tests {
         assert_eq!(p("file://localhost/tmp/x/"), Ok(PathBuf::from("/tmp/x/")));
         assert_eq!(p("file:///C:/fmu/res"), Ok(PathBuf::from("C:/fmu/res")));
         assert_eq!(p("/tmp/a b/res"), Ok(PathBuf::from("/tmp/a b/res")));
+        // Schemes and host names are case-insensitive (RFC 3986, 3.1 and 3.2.2).
+        assert_eq!(p("FILE:///tmp/x"), Ok(PathBuf::from("/tmp/x")));
+        assert_eq!(p("File:/tmp/x"), Ok(PathBuf::from("/tmp/x")));
+        assert_eq!(p("file://LocalHost/tmp/x"), Ok(PathBuf::from("/tmp/x")));
+        assert!(p("filex:///tmp/x").unwrap_err().contains("not a file: URI"));
         assert!(p("http://x/y").unwrap_err().contains("not a file: URI"));
         assert!(p("tmp/x").unwrap_err().contains("not a file: URI"));
         assert!(p("file://server/share").unwrap_err().contains("host"));
