@@ -3,7 +3,9 @@
 //! The crate's own cdylib exports every model ([`Binary::ALL`], for the in-process driver, the
 //! Rust tests and the report). The library packed into an FMU is built from `binary/`, a crate
 //! that names one model and whether it reads variants: the linker then leaves every other
-//! model out, and fmi2Instantiate refuses any GUID but its FMU's.
+//! model out, and fmi2Instantiate refuses any GUID but its FMU's, or, in a variant FMU's library
+//! (one for every variant of its model), any GUID but the one the variant in the resources it
+//! is handed hashes to.
 
 use crate::models::{Model, MODELS};
 use crate::variant::registry::{self, Loaded};

@@ -656,7 +656,7 @@ impl Instance {
             || (current_communication_point - self.time).abs() > tolerance
         {
             return self.error(&format!(
-                "fmi2DoStep: expected currentCommunicationPoint = {} but was {current_communication_point}",
+                "fmi2DoStep: expected currentCommunicationPoint = {} (within {tolerance:.1e} s: 1e-12 (1 + |t|) and 4 ulps of the step) but was {current_communication_point}",
                 self.time
             ));
         }

@@ -351,6 +351,22 @@ def test_the_master_clock_is_followed_not_the_sum_of_steps(model):
     slave.free()
 
 
+def test_the_communication_point_slack_is_relative_to_t():
+    """docs/interoperability.md: a point is accepted within 1e-12 (1 + |t|) s of the FMU's t (plus
+    4 ulps of the step), relative once t > 1 s, and the refusal says that slack."""
+    for model in MODELS:
+        t0 = 1e3
+        h = default_step(model)
+        slave = Slave(model)
+        slave.initialize(start_time=t0)
+        slack = 1e-12 * (1 + t0)
+        refused(slave, lambda: slave.fmu.doStep(t0 + 1.2 * slack, h), "fmi2DoStep",
+                "expected currentCommunicationPoint = 1000 (within 1.0e-9 s: 1e-12 (1 + |t|) and "
+                "4 ulps of the step) but was")
+        slave.fmu.doStep(t0 + 0.8 * slack, h)  # 8e-10 s off: taken, where 1e-12 s would not be
+        slave.free()
+
+
 def test_a_step_lost_to_the_round_off_of_t_is_refused():
     """Regression: at startTime 1e6 a step of 1e-11 s returned OK and time stood still."""
     for model in MODELS:

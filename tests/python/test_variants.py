@@ -292,6 +292,29 @@ def test_tampered_or_missing_variant_resource_is_refused(packed, tmp_path):
     s.free()
 
 
+def test_a_variant_library_is_its_models_and_runs_the_variant_it_is_handed(packed, tmp_path):
+    """docs/platforms.md: a variant FMU's library is the same bytes for every variant of its
+    model, so Table2's runs Table3 handed Table3's GUID and resources, and refuses Table3's GUID
+    with Table2's resources, whose variant hashes to another."""
+    (_, table2), (_, table3) = packed["table2"], packed["table3"]
+    two = pathlib.Path(fmpy.extract(str(table2), unzipdir=str(tmp_path / "two")))
+    three = pathlib.Path(fmpy.extract(str(table3), unzipdir=str(tmp_path / "three")))
+    platform = "linux64" if os.name == "posix" else "win64"
+    suffix = ".so" if os.name == "posix" else ".dll"
+    library_two = two / "binaries" / platform / f"Table2{suffix}"
+    library_three = three / "binaries" / platform / f"Table3{suffix}"
+    assert library_two.read_bytes() == library_three.read_bytes()
+    library_three.write_bytes(library_two.read_bytes())
+    md = fmpy.read_model_description(str(table3))
+    conftest._UNZIPPED["Table3"] = (str(three), md)
+    Slave("Table3").free()  # Table2's library, Table3's files
+    (three / "resources" / "variant.toml").write_text(
+        (two / "resources" / "variant.toml").read_text())
+    log = instantiation_log(table3, three)
+    assert any(status == 3 and "describes an interface with GUID" in m
+               for status, _, m in log), log
+
+
 def test_a_plain_absolute_resource_path_is_taken_like_its_file_uri(packed, monkeypatch):
     """Some importers pass fmuResourceLocation as a plain path (FMI 1.0's habit); a variant FMU,
     which reads resources/variant.toml, runs from it as from the file: URI."""
