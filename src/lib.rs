@@ -15,6 +15,7 @@ pub mod friction;
 #[cfg(feature = "tools")]
 #[allow(unsafe_code)]
 pub mod importer;
+pub mod instance;
 pub mod model_description;
 pub mod models;
 #[cfg(feature = "tools")]

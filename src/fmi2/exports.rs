@@ -1,56 +1,28 @@
 //! Every FMI 2.0 common and co-simulation function, exported with its C name.
 //!
-//! Each one: find the instance (a pointer this library handed out and has not freed, else a
-//! refusal instead of a crash), turn pointers into slices, dispatch to [`Instance`], return.
-//! They carry their C names; [`super::binary`]'s macro exports them under those names.
+//! Each one: find the instance (a handle this library handed out and has not freed, else a
+//! refusal instead of a crash), turn pointers into slices, dispatch to [`Instance`], turn its
+//! outcome into an fmi2Status. They carry their C names; [`super::binary`]'s macro exports them
+//! under those names.
 #![allow(non_snake_case)]
 
 use super::binary::Binary;
-use super::calls::Call;
+use super::dialect::FMI2;
 use super::ffi::*;
-use super::instance::{Instance, Phase};
 use super::logger::Logger;
-use super::snapshot::{self, Snapshot};
+use crate::instance::calls::{Call, ValueType};
+use crate::instance::log::CATEGORY_ERROR;
+use crate::instance::{handles, snapshot, Instance, Status as Outcome};
 use crate::models::Model;
 use crate::variables::variable::Kind;
 use crate::variant::registry::Loaded;
 use std::ffi::{c_int, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
-/// Live instances as (handle, address). The handle an importer holds is the instance's id, never
-/// reused, not its address: the allocator may give a freed instance's address to the next one, and
-/// a freed handle must not come to stand for it. Calls on anything else (freed, NULL, garbage)
-/// are refused.
-static LIVE: Mutex<Vec<(usize, usize)>> = Mutex::new(Vec::new());
-static NEXT_ID: AtomicU64 = AtomicU64::new(1);
-
-fn live() -> std::sync::MutexGuard<'static, Vec<(usize, usize)>> {
-    // A panic while holding the lock cannot leave the list inconsistent: recover it.
-    LIVE.lock().unwrap_or_else(|e| e.into_inner())
-}
-
-/// Runs `body` on a live instance, catching panics so none crosses into the importer.
-fn with_instance(c: Component, body: impl FnOnce(&mut Instance) -> Status) -> Status {
-    let address = live()
-        .iter()
-        .find(|&&(handle, _)| handle == c as usize)
-        .map(|&(_, address)| address);
-    let Some(address) = address else {
-        // No instance, so no logger to tell: the status is all we can give.
-        return Status::Error;
-    };
-    // SAFETY: the handle is in LIVE, so `address` is a Box<Instance> we leaked and have not freed
-    // yet; FMI forbids calling one instance from two threads at once.
-    let instance = unsafe { &mut *(address as *mut Instance) };
-    match catch_unwind(AssertUnwindSafe(|| body(&mut *instance))) {
-        Ok(status) => status,
-        Err(_) => {
-            instance.phase = Phase::Error;
-            instance.error("internal error (a bug in the FMU): the instance is in error state; call fmi2Reset or fmi2FreeInstance")
-        }
-    }
+/// Runs `body` on the live FMI 2.0 instance `c` names (see [`handles::with_instance`]).
+fn with_instance(c: Component, body: impl FnOnce(&mut Instance) -> Outcome) -> Status {
+    handles::with_instance(c as usize, &FMI2, body).into()
 }
 
 /// A borrowed C string, or None for NULL or invalid UTF-8.
@@ -81,12 +53,6 @@ unsafe fn slice_mut<'a, T>(p: *mut T, n: usize) -> Option<&'a mut [T]> {
     } else {
         Some(std::slice::from_raw_parts_mut(p, n))
     }
-}
-
-fn null_argument(instance: &Instance, function: &str, what: &str) -> Status {
-    instance.error(&format!(
-        "{function}: {what} is NULL: expected a valid pointer"
-    ))
 }
 
 pub extern "C" fn fmi2GetTypesPlatform() -> FmiString {
@@ -168,7 +134,7 @@ pub unsafe fn instantiate(
         let refuse = |message: String| {
             logger.log(
                 Status::Error,
-                super::logger::CATEGORY_ERROR,
+                CATEGORY_ERROR,
                 &format!("fmi2Instantiate: {message}"),
             );
             std::ptr::null_mut()
@@ -201,16 +167,12 @@ pub unsafe fn instantiate(
             Ok(found) => found,
             Err(message) => return refuse(message),
         };
-        let id = NEXT_ID.fetch_add(1, Ordering::Relaxed);
-        let mut instance = Instance::new(id, model, guid, logger, logging_on != FALSE);
+        let mut instance = Instance::new(model, guid, &FMI2, Box::new(logger), logging_on != FALSE);
         if let Some(loaded) = variant {
             instance = instance.for_variant(loaded);
         }
-        let address = Box::into_raw(Box::new(instance));
         // Ids start at 1, so no handle is NULL.
-        let handle = id as usize;
-        live().push((handle, address as usize));
-        handle as Component
+        handles::register(instance) as Component
     }))
     .unwrap_or(std::ptr::null_mut())
 }
@@ -218,29 +180,7 @@ pub unsafe fn instantiate(
 /// # Safety
 /// `c` from fmi2Instantiate; NULL, foreign or already freed handles are ignored.
 pub unsafe extern "C" fn fmi2FreeInstance(c: Component) {
-    let removed = {
-        let mut live = live();
-        let removed = live
-            .iter()
-            .position(|&(handle, _)| handle == c as usize)
-            .map(|i| live.swap_remove(i).1);
-        // The list's memory goes with the last instance, so unloading the library leaks nothing.
-        if live.is_empty() {
-            *live = Vec::new();
-        }
-        removed
-    };
-    if let Some(address) = removed {
-        let _ = catch_unwind(AssertUnwindSafe(|| {
-            // SAFETY: it was live, and only this call could remove it.
-            let instance = Box::from_raw(address as *mut Instance);
-            for &snapshot in &instance.snapshots {
-                drop(Box::from_raw(snapshot as *mut Snapshot));
-            }
-            drop(instance);
-            crate::variant::registry::release_unused();
-        }));
-    }
+    handles::free(c as usize, &FMI2);
 }
 
 /// # Safety
@@ -253,13 +193,13 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
 ) -> Status {
     with_instance(c, |instance| {
         let Some(categories) = slice(categories, n_categories) else {
-            return null_argument(instance, "fmi2SetDebugLogging", "categories");
+            return instance.null_argument(Call::SetDebugLogging, "categories");
         };
         let mut names = Vec::with_capacity(categories.len());
         for &category in categories {
             match text(category) {
                 Some(name) => names.push(name.to_string()),
-                None => return null_argument(instance, "fmi2SetDebugLogging", "a category name"),
+                None => return instance.null_argument(Call::SetDebugLogging, "a category name"),
             }
         }
         instance.set_debug_logging(logging_on != FALSE, &names)
@@ -366,10 +306,9 @@ unsafe fn get_values<T>(
         accepts,
         type_name,
     } = access;
-    let function = call.name();
     with_instance(c, |instance| {
         let (Some(vrs), Some(out)) = (slice(vr, nvr), slice_mut(value, nvr)) else {
-            return null_argument(instance, function, "vr or value");
+            return instance.null_argument(call, "vr or value");
         };
         instance.get(
             call,
@@ -395,10 +334,10 @@ unsafe fn set_values<T: Copy>(
         accepts,
         type_name,
     } = access;
-    let function = call.name();
     with_instance(c, |instance| {
+        let function = instance.function(call);
         let (Some(vrs), Some(values)) = (slice(vr, nvr), slice(value, nvr)) else {
-            return null_argument(instance, function, "vr or value");
+            return instance.null_argument(call, "vr or value");
         };
         instance.trace(|| format!("{function}(vr = {vrs:?})"));
         instance.set(call, vrs, &|i| convert(values[i]), accepts, type_name)
@@ -415,7 +354,7 @@ pub unsafe extern "C" fn fmi2GetReal(
 ) -> Status {
     get_values(
         c,
-        access(Call::GetReal, is_real, "Real"),
+        access(Call::Get(ValueType::Float64), is_real, "Real"),
         vr,
         nvr,
         value,
@@ -433,7 +372,11 @@ pub unsafe extern "C" fn fmi2GetInteger(
 ) -> Status {
     get_values(
         c,
-        access(Call::GetInteger, is_integer, "Integer or Enumeration"),
+        access(
+            Call::Get(ValueType::Int32),
+            is_integer,
+            "Integer or Enumeration",
+        ),
         vr,
         nvr,
         value,
@@ -451,7 +394,7 @@ pub unsafe extern "C" fn fmi2GetBoolean(
 ) -> Status {
     get_values(
         c,
-        access(Call::GetBoolean, is_none, "Boolean"),
+        access(Call::Get(ValueType::Boolean), is_none, "Boolean"),
         vr,
         nvr,
         value,
@@ -469,7 +412,7 @@ pub unsafe extern "C" fn fmi2GetString(
 ) -> Status {
     get_values(
         c,
-        access(Call::GetString, is_none, "String"),
+        access(Call::Get(ValueType::String), is_none, "String"),
         vr,
         nvr,
         value,
@@ -487,7 +430,7 @@ pub unsafe extern "C" fn fmi2SetReal(
 ) -> Status {
     set_values(
         c,
-        access(Call::SetReal, is_real, "Real"),
+        access(Call::Set(ValueType::Float64), is_real, "Real"),
         vr,
         nvr,
         value,
@@ -505,7 +448,11 @@ pub unsafe extern "C" fn fmi2SetInteger(
 ) -> Status {
     set_values(
         c,
-        access(Call::SetInteger, is_integer, "Integer or Enumeration"),
+        access(
+            Call::Set(ValueType::Int32),
+            is_integer,
+            "Integer or Enumeration",
+        ),
         vr,
         nvr,
         value,
@@ -523,7 +470,7 @@ pub unsafe extern "C" fn fmi2SetBoolean(
 ) -> Status {
     set_values(
         c,
-        access(Call::SetBoolean, is_none, "Boolean"),
+        access(Call::Set(ValueType::Boolean), is_none, "Boolean"),
         vr,
         nvr,
         value,
@@ -541,12 +488,17 @@ pub unsafe extern "C" fn fmi2SetString(
 ) -> Status {
     set_values(
         c,
-        access(Call::SetString, is_none, "String"),
+        access(Call::Set(ValueType::String), is_none, "String"),
         vr,
         nvr,
         value,
         |_| 0.0,
     )
+}
+
+/// The address of the FMU state a slot holds, None for NULL (a new state).
+unsafe fn slot_address(slot: &FmuState) -> Option<usize> {
+    (!slot.is_null()).then_some(*slot as usize)
 }
 
 /// Takes a snapshot into `*state` (a new one if `*state` is NULL, else overwriting one this
@@ -557,40 +509,17 @@ pub unsafe extern "C" fn fmi2SetString(
 pub unsafe extern "C" fn fmi2GetFMUstate(c: Component, state: *mut FmuState) -> Status {
     with_instance(c, |instance| {
         instance.trace(|| "fmi2GetFMUstate()".into());
-        if let Err(status) = instance.check_phase(Call::GetFMUstate) {
-            return status;
-        }
         let Some(slot) = state.as_mut() else {
-            return null_argument(instance, "fmi2GetFMUstate", "FMUstate");
+            return instance.null_argument(Call::GetFMUstate, "FMUstate");
         };
-        let snapshot = Snapshot::take(instance);
-        if slot.is_null() {
-            let address = Box::into_raw(Box::new(snapshot));
-            instance.snapshots.push(address as usize);
-            *slot = address as FmuState;
-        } else if instance.snapshots.contains(&(*slot as usize)) {
-            // SAFETY: a live snapshot of this instance.
-            *(*slot as *mut Snapshot) = snapshot;
-        } else {
-            return instance.error("fmi2GetFMUstate: *FMUstate is neither NULL nor a state of this instance: expected NULL or a state from fmi2GetFMUstate of this instance");
+        match instance.get_state(slot_address(slot)) {
+            Ok(address) => {
+                *slot = address as FmuState;
+                Outcome::Ok
+            }
+            Err(status) => status,
         }
-        Status::Ok
     })
-}
-
-/// Looks up a snapshot of this instance by its pointer.
-fn own_snapshot<'a>(
-    instance: &Instance,
-    function: &str,
-    state: FmuState,
-) -> Result<&'a mut Snapshot, Status> {
-    if state.is_null() || !instance.snapshots.contains(&(state as usize)) {
-        return Err(instance.error(&format!(
-            "{function}: the FMUstate was not made by this instance (or was freed): expected a state from fmi2GetFMUstate or fmi2DeSerializeFMUstate of this instance"
-        )));
-    }
-    // SAFETY: listed, so it is a live Box<Snapshot> this instance owns.
-    Ok(unsafe { &mut *(state as *mut Snapshot) })
 }
 
 /// # Safety
@@ -598,17 +527,7 @@ fn own_snapshot<'a>(
 pub unsafe extern "C" fn fmi2SetFMUstate(c: Component, state: FmuState) -> Status {
     with_instance(c, |instance| {
         instance.trace(|| format!("fmi2SetFMUstate({state:?})"));
-        if let Err(status) = instance.check_phase(Call::SetFMUstate) {
-            return status;
-        }
-        let snapshot = match own_snapshot(instance, "fmi2SetFMUstate", state) {
-            Ok(snapshot) => snapshot.clone(),
-            Err(status) => return status,
-        };
-        match snapshot.restore(instance) {
-            Ok(()) => Status::Ok,
-            Err(message) => instance.error(&format!("fmi2SetFMUstate: {message}")),
-        }
+        instance.set_state(state as usize)
     })
 }
 
@@ -616,23 +535,20 @@ pub unsafe extern "C" fn fmi2SetFMUstate(c: Component, state: FmuState) -> Statu
 /// `state` points to an fmi2FMUstate from this instance.
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: Component, state: *mut FmuState) -> Status {
     with_instance(c, |instance| {
-        if let Err(status) = instance.check_phase(Call::FreeFMUstate) {
-            return status;
-        }
         let Some(slot) = state.as_mut() else {
-            return null_argument(instance, "fmi2FreeFMUstate", "FMUstate");
+            return instance.null_argument(Call::FreeFMUstate, "FMUstate");
         };
-        if slot.is_null() {
-            return Status::Ok;
+        let Some(address) = slot_address(slot) else {
+            return instance
+                .check_phase(Call::FreeFMUstate)
+                .err()
+                .unwrap_or(Outcome::Ok);
+        };
+        let status = instance.free_state(address);
+        if status == Outcome::Ok {
+            *slot = std::ptr::null_mut();
         }
-        if let Err(status) = own_snapshot(instance, "fmi2FreeFMUstate", *slot) {
-            return status;
-        }
-        instance.snapshots.retain(|&a| a != *slot as usize);
-        // SAFETY: it was listed, and is now unlisted, so this is its one drop.
-        drop(Box::from_raw(*slot as *mut Snapshot));
-        *slot = std::ptr::null_mut();
-        Status::Ok
+        status
     })
 }
 
@@ -644,16 +560,13 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
     size: *mut usize,
 ) -> Status {
     with_instance(c, |instance| {
-        if let Err(status) = instance.check_phase(Call::SerializedFMUstateSize) {
-            return status;
-        }
         let Some(size) = size.as_mut() else {
-            return null_argument(instance, "fmi2SerializedFMUstateSize", "size");
+            return instance.null_argument(Call::SerializedFMUstateSize, "size");
         };
-        match own_snapshot(instance, "fmi2SerializedFMUstateSize", state) {
-            Ok(snapshot) => {
-                *size = snapshot.to_bytes().len();
-                Status::Ok
+        match instance.serialized_state_size(state as usize) {
+            Ok(length) => {
+                *size = length;
+                Outcome::Ok
             }
             Err(status) => status,
         }
@@ -669,25 +582,15 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
     size: usize,
 ) -> Status {
     with_instance(c, |instance| {
-        if let Err(status) = instance.check_phase(Call::SerializeFMUstate) {
-            return status;
-        }
-        let snapshot = match own_snapshot(instance, "fmi2SerializeFMUstate", state) {
-            Ok(snapshot) => snapshot,
+        let data = match instance.serialize_state(state as usize, size) {
+            Ok(data) => data,
             Err(status) => return status,
         };
-        let data = snapshot.to_bytes();
-        if size < data.len() {
-            return instance.error(&format!(
-                "fmi2SerializeFMUstate: size = {size} is too small: expected {} bytes (fmi2SerializedFMUstateSize)",
-                data.len()
-            ));
-        }
         let Some(out) = slice_mut(bytes as *mut u8, data.len()) else {
-            return null_argument(instance, "fmi2SerializeFMUstate", "serializedState");
+            return instance.null_argument(Call::SerializeFMUstate, "serializedState");
         };
         out.copy_from_slice(&data);
-        Status::Ok
+        Outcome::Ok
     })
 }
 
@@ -701,39 +604,27 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
 ) -> Status {
     with_instance(c, |instance| {
         instance.trace(|| format!("fmi2DeSerializeFMUstate(size = {size})"));
-        if let Err(status) = instance.check_phase(Call::DeSerializeFMUstate) {
-            return status;
-        }
         // The header first: a size beyond the length it declares is refused before the data
         // is read that far.
         let Some(header) = slice(bytes as *const u8, size.min(snapshot::HEADER)) else {
-            return null_argument(instance, "fmi2DeSerializeFMUstate", "serializedState");
+            return instance.null_argument(Call::DeSerializeFMUstate, "serializedState");
         };
-        if let Some(length) = snapshot::declared_length(header) {
-            if length != size as u64 {
-                return instance.error(&format!(
-                    "fmi2DeSerializeFMUstate: the serialized FMU state is not valid: size = {size}, but it says it is {length} bytes long; expected the size fmi2SerializedFMUstateSize gave"
-                ));
-            }
+        if let Err(status) = instance.check_serialized_header(header, size) {
+            return status;
         }
         let Some(data) = slice(bytes as *const u8, size) else {
-            return null_argument(instance, "fmi2DeSerializeFMUstate", "serializedState");
+            return instance.null_argument(Call::DeSerializeFMUstate, "serializedState");
         };
         let Some(slot) = state.as_mut() else {
-            return null_argument(instance, "fmi2DeSerializeFMUstate", "FMUstate");
+            return instance.null_argument(Call::DeSerializeFMUstate, "FMUstate");
         };
-        let snapshot = match Snapshot::from_bytes(data, instance.guid(), instance.id) {
-            Ok(snapshot) => snapshot,
-            Err(message) => return instance.error(&format!("fmi2DeSerializeFMUstate: {message}")),
-        };
-        if !slot.is_null() && instance.snapshots.contains(&(*slot as usize)) {
-            *(*slot as *mut Snapshot) = snapshot;
-        } else {
-            let address = Box::into_raw(Box::new(snapshot));
-            instance.snapshots.push(address as usize);
-            *slot = address as FmuState;
+        match instance.deserialize_state(data, slot_address(slot)) {
+            Ok(address) => {
+                *slot = address as FmuState;
+                Outcome::Ok
+            }
+            Err(status) => status,
         }
-        Status::Ok
     })
 }
 
@@ -750,10 +641,8 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
 ) -> Status {
     with_instance(c, |instance| {
         // A call in the wrong state is refused as such first, naming the state.
-        if let Err(status) = instance.check_phase(Call::GetDirectionalDerivative) {
-            return status;
-        }
-        instance.error(
+        instance.unsupported(
+            Call::GetDirectionalDerivative,
             "fmi2GetDirectionalDerivative is not supported (providesDirectionalDerivative = false)",
         )
     })
@@ -769,13 +658,12 @@ pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     value: *const Real,
 ) -> Status {
     with_instance(c, |instance| {
-        const FUNCTION: &str = "fmi2SetRealInputDerivatives";
         let (Some(vrs), Some(orders), Some(values)) =
             (slice(vr, nvr), slice(order, nvr), slice(value, nvr))
         else {
-            return null_argument(instance, FUNCTION, "vr, order or value");
+            return instance.null_argument(Call::SetRealInputDerivatives, "vr, order or value");
         };
-        instance.trace(|| format!("{FUNCTION}(vr = {vrs:?}, order = {orders:?})"));
+        instance.trace(|| format!("fmi2SetRealInputDerivatives(vr = {vrs:?}, order = {orders:?})"));
         instance.set_input_derivatives(vrs, orders, values)
     })
 }
@@ -790,11 +678,10 @@ pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
     value: *mut Real,
 ) -> Status {
     with_instance(c, |instance| {
-        const FUNCTION: &str = "fmi2GetRealOutputDerivatives";
         let (Some(vrs), Some(orders), Some(out)) =
             (slice(vr, nvr), slice(order, nvr), slice_mut(value, nvr))
         else {
-            return null_argument(instance, FUNCTION, "vr, order or value");
+            return instance.null_argument(Call::GetRealOutputDerivatives, "vr, order or value");
         };
         instance.get_output_derivatives(vrs, orders, out)
     })
@@ -820,11 +707,11 @@ pub unsafe extern "C" fn fmi2DoStep(
 /// `c` from fmi2Instantiate.
 pub unsafe extern "C" fn fmi2CancelStep(c: Component) -> Status {
     with_instance(c, |instance| {
-        if let Err(status) = instance.check_phase(Call::CancelStep) {
-            return status;
-        }
-        // No step is ever pending: nothing to cancel.
-        Status::Ok
+        // No step is ever pending: the phase check refuses it in every phase.
+        instance
+            .check_phase(Call::CancelStep)
+            .err()
+            .unwrap_or(Outcome::Ok)
     })
 }
 
@@ -836,18 +723,18 @@ pub unsafe extern "C" fn fmi2GetStatus(c: Component, kind: c_int, value: *mut St
             return status;
         }
         let Some(value) = value.as_mut() else {
-            return null_argument(instance, "fmi2GetStatus", "value");
+            return instance.null_argument(Call::GetStatus, "value");
         };
         if kind != DO_STEP_STATUS {
             return instance.error(&format!("fmi2GetStatus: status kind {kind} is not an fmi2Status kind: expected fmi2DoStepStatus ({DO_STEP_STATUS})"));
         }
         // Steps are synchronous: the status of the last one is all there is to tell.
-        *value = if instance.phase == Phase::StepFailed {
+        *value = if instance.step_discarded() {
             Status::Discard
         } else {
             Status::Ok
         };
-        Status::Ok
+        Outcome::Ok
     })
 }
 
@@ -859,13 +746,13 @@ pub unsafe extern "C" fn fmi2GetRealStatus(c: Component, kind: c_int, value: *mu
             return status;
         }
         let Some(value) = value.as_mut() else {
-            return null_argument(instance, "fmi2GetRealStatus", "value");
+            return instance.null_argument(Call::GetRealStatus, "value");
         };
         if kind != LAST_SUCCESSFUL_TIME {
             return instance.error(&format!("fmi2GetRealStatus: status kind {kind}: expected fmi2LastSuccessfulTime ({LAST_SUCCESSFUL_TIME})"));
         }
-        *value = instance.last_successful_time;
-        Status::Ok
+        *value = instance.last_successful_time();
+        Outcome::Ok
     })
 }
 
@@ -877,12 +764,12 @@ pub unsafe extern "C" fn fmi2GetIntegerStatus(
     _value: *mut Integer,
 ) -> Status {
     with_instance(c, |instance| {
-        if let Err(status) = instance.check_phase(Call::GetIntegerStatus) {
-            return status;
-        }
-        instance.error(&format!(
-            "fmi2GetIntegerStatus: status kind {kind}: no Integer status is defined by FMI 2.0"
-        ))
+        instance.unsupported(
+            Call::GetIntegerStatus,
+            &format!(
+                "fmi2GetIntegerStatus: status kind {kind}: no Integer status is defined by FMI 2.0"
+            ),
+        )
     })
 }
 
@@ -898,7 +785,7 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(
             return status;
         }
         let Some(value) = value.as_mut() else {
-            return null_argument(instance, "fmi2GetBooleanStatus", "value");
+            return instance.null_argument(Call::GetBooleanStatus, "value");
         };
         if kind != TERMINATED {
             return instance.error(&format!(
@@ -906,13 +793,8 @@ pub unsafe extern "C" fn fmi2GetBooleanStatus(
             ));
         }
         // The slave asks to end once it has reached the stop time, or has ended.
-        let at_stop = instance.stop_time.is_some_and(|stop| instance.time >= stop);
-        *value = if at_stop || instance.phase == Phase::Terminated {
-            TRUE
-        } else {
-            FALSE
-        };
-        Status::Ok
+        *value = if instance.asks_to_end() { TRUE } else { FALSE };
+        Outcome::Ok
     })
 }
 
@@ -924,11 +806,11 @@ pub unsafe extern "C" fn fmi2GetStringStatus(
     _value: *mut FmiString,
 ) -> Status {
     with_instance(c, |instance| {
-        if let Err(status) = instance.check_phase(Call::GetStringStatus) {
-            return status;
-        }
-        instance.error(&format!(
-            "fmi2GetStringStatus: status kind {kind}: fmi2PendingStatus ({PENDING_STATUS}) is the only one, and no step is ever pending here"
-        ))
+        instance.unsupported(
+            Call::GetStringStatus,
+            &format!(
+                "fmi2GetStringStatus: status kind {kind}: fmi2PendingStatus ({PENDING_STATUS}) is the only one, and no step is ever pending here"
+            ),
+        )
     })
 }

@@ -54,3 +54,16 @@ pub struct CallbackFunctions {
     pub step_finished: Option<StepFinished>,
     pub component_environment: ComponentEnvironment,
 }
+
+impl From<crate::instance::log::Status> for Status {
+    fn from(status: crate::instance::log::Status) -> Status {
+        use crate::instance::log::Status as S;
+        match status {
+            S::Ok => Status::Ok,
+            S::Warning => Status::Warning,
+            S::Discard => Status::Discard,
+            S::Error => Status::Error,
+            S::Fatal => Status::Fatal,
+        }
+    }
+}

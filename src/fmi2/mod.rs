@@ -2,21 +2,20 @@
 //! ([`crate::importer`]) and the CPU clock, the only `unsafe` code of the crate.
 //!
 //! `exports` turns C pointers into slices and strings once, at the edge, and hands them to
-//! `instance`, one state machine shared by every model. No panic crosses the C boundary: every
-//! exported function runs its body under `catch_unwind`.
+//! [`crate::instance`], one state machine shared by every model and both standards; `dialect`
+//! names its calls and phases as FMI 2.0 does. No panic crosses the C boundary: every exported
+//! function runs its body under `catch_unwind`.
 
 // The modules that touch C pointers or the C library, each allowed `unsafe` by name; the rest
 // of the crate denies it (src/lib.rs).
 #[allow(unsafe_code)]
 pub mod binary;
-pub mod calls;
+pub mod dialect;
 #[allow(unsafe_code)]
 pub mod exports;
 pub mod ffi;
-pub mod instance;
 #[allow(unsafe_code)]
 pub mod logger;
-pub mod snapshot;
 
 include!(concat!(env!("OUT_DIR"), "/guids.rs"));
 

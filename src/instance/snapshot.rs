@@ -2,11 +2,13 @@
 //!
 //! The bytes carry a magic word, a format version, their own length, the model's GUID and a
 //! checksum, so truncated, corrupted or foreign data is refused with a message instead of being
-//! loaded. The length comes right after the magic word: fmi2DeSerializeFMUstate compares it with
+//! loaded. The length comes right after the magic word: deserialization compares it with
 //! the size it is given before reading further, so a size larger than the data is refused
 //! without reading past the data's end.
 
-use super::instance::{Instance, Phase};
+use super::calls::Call;
+use super::phase::Phase;
+use super::Instance;
 use crate::variables::values::check_value;
 use crate::variables::variable::{Causality, Kind};
 
@@ -87,18 +89,21 @@ impl Snapshot {
                     .map_err(|message| format!("the FMU state holds {message}"))?;
             }
         }
-        // A model exists from fmi2ExitInitializationMode on, and only then.
+        // A model exists from the end of initialization on, and only then.
         let needs_simulation =
             !matches!(self.phase, Phase::Instantiated | Phase::InitializationMode);
         if needs_simulation != self.sim.is_some() {
             return Err(format!(
                 "the FMU state is in phase {} {} a model state: expected one {}",
-                self.phase.name(),
+                instance.phase_name(self.phase),
                 if needs_simulation { "without" } else { "with" },
                 if needs_simulation {
-                    "with it after fmi2ExitInitializationMode"
+                    format!(
+                        "with it after {}",
+                        instance.function(Call::ExitInitializationMode)
+                    )
                 } else {
-                    "without it before"
+                    "without it before".to_string()
                 }
             ));
         }
@@ -161,8 +166,14 @@ impl Snapshot {
         bytes
     }
 
-    /// Reads bytes written by [`Snapshot::to_bytes`] for the model with `guid`, owned by `owner`.
-    pub fn from_bytes(bytes: &[u8], guid: &str, owner: u64) -> Result<Snapshot, String> {
+    /// Reads bytes written by [`Snapshot::to_bytes`] for the model with `guid`, owned by `owner`;
+    /// `sizes` names the function that gives the bytes' size.
+    pub fn from_bytes(
+        bytes: &[u8],
+        guid: &str,
+        owner: u64,
+        sizes: &str,
+    ) -> Result<Snapshot, String> {
         let corrupt = |what: &str| format!("the serialized FMU state is not valid: {what}");
         let Some(length) = declared_length(bytes) else {
             return Err(corrupt(
@@ -171,7 +182,7 @@ impl Snapshot {
         };
         if length != bytes.len() as u64 || bytes.len() < HEADER + 4 + 8 {
             return Err(corrupt(&format!(
-                "it says it is {length} bytes long but {} were given (truncated, or a size other than fmi2SerializedFMUstateSize's)",
+                "it says it is {length} bytes long but {} were given (truncated, or a size other than {sizes}'s)",
                 bytes.len()
             )));
         }
