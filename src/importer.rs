@@ -21,9 +21,9 @@
     any(target_arch = "x86_64", target_arch = "aarch64")
 ))]
 
-use crate::fmi2::binary::Binary;
 use crate::fmi2::exports::*;
 use crate::fmi2::ffi::{self, CallbackFunctions, CallbackLogger, FmuState, Status};
+use crate::instance::library::Binary;
 use std::ffi::{c_char, c_int, c_void, CStr, CString};
 use std::sync::{Mutex, MutexGuard};
 

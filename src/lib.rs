@@ -7,10 +7,13 @@
 // `unsafe`: each module that does is allowed it by name.
 #![deny(unsafe_code)]
 
+#[allow(unsafe_code)]
+pub mod boundary;
 #[cfg(feature = "tools")]
 #[allow(unsafe_code)]
 pub mod cpu_clock;
 pub mod fmi2;
+pub mod fmi3;
 pub mod friction;
 #[cfg(feature = "tools")]
 #[allow(unsafe_code)]

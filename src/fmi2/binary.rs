@@ -1,39 +1,8 @@
-//! What one FMU's library carries, and the macro that exports the FMI 2.0 functions for it.
-//!
-//! The crate's own cdylib exports every model ([`Binary::ALL`], for the in-process driver, the
-//! Rust tests and the report). The library packed into an FMU is built from `binary/`, a crate
-//! that names one model and whether it reads variants: the linker then leaves every other
-//! model out, and fmi2Instantiate refuses any GUID but its FMU's, or, in a variant FMU's library
-//! (one for every variant of its model), any GUID but the one the variant in the resources it
-//! is handed hashes to.
-
-use crate::models::{Model, MODELS};
-use crate::variant::registry::{self, Loaded};
-use std::sync::Arc;
-
-/// Finds the variant behind a GUID (see [`registry::for_guid`]).
-pub type Variants = fn(&str, Option<&str>, &'static [Model]) -> Result<Arc<Loaded>, String>;
-
-/// The models a library carries and which GUIDs it accepts.
-pub struct Binary {
-    pub models: &'static [Model],
-    /// Accept the full models' GUIDs (a full model's FMU).
-    pub full_models: bool,
-    /// Accept a variant FMU's GUID, checked against its resources/variant.toml; None leaves the
-    /// variant reader out of the library.
-    pub variants: Option<Variants>,
-}
-
-impl Binary {
-    pub const ALL: Binary = Binary {
-        models: MODELS,
-        full_models: true,
-        variants: Some(registry::for_guid),
-    };
-}
+//! The macro that exports the FMI 2.0 functions of a library that carries what a
+//! [`crate::instance::library::Binary`] says.
 
 /// Exports the 34 FMI 2.0 common and co-simulation functions with their C names, for the
-/// library described by `$binary` (a `&'static Binary`); each forwards to [`super::exports`].
+/// library described by `$binary` (a `&'static Binary`, [`crate::instance::library::Binary`]); each forwards to [`super::exports`].
 #[macro_export]
 macro_rules! export_fmi2 {
     ($binary:expr) => {
@@ -337,29 +306,7 @@ macro_rules! export_fmi2 {
     };
 }
 
-/// Exports the FMI 2.0 functions of one FMU's library: `$model` names a model constant of
-/// [`crate::models`]; `full` accepts its GUID, `variant` a variant's (and carries the reader).
-#[macro_export]
-macro_rules! export_fmu_library {
-    ($model:ident, full) => {
-        static BINARY: $crate::fmi2::binary::Binary = $crate::fmi2::binary::Binary {
-            models: &[$crate::models::$model],
-            full_models: true,
-            variants: None,
-        };
-        $crate::export_fmi2!(&BINARY);
-    };
-    ($model:ident, variant) => {
-        static BINARY: $crate::fmi2::binary::Binary = $crate::fmi2::binary::Binary {
-            models: &[$crate::models::$model],
-            full_models: false,
-            variants: Some($crate::variant::registry::for_guid),
-        };
-        $crate::export_fmi2!(&BINARY);
-    };
-}
-
 #[cfg(feature = "exports")]
 mod all {
-    crate::export_fmi2!(&super::Binary::ALL);
+    crate::export_fmi2!(&crate::instance::library::Binary::ALL);
 }

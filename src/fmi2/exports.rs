@@ -6,53 +6,23 @@
 //! under those names.
 #![allow(non_snake_case)]
 
-use super::binary::Binary;
 use super::dialect::FMI2;
 use super::ffi::*;
 use super::logger::Logger;
+use crate::boundary::args::{slice, slice_mut, text};
+use crate::boundary::states;
+use crate::boundary::values::{self, access, is_integer, is_none, is_real, is_switch, Access};
 use crate::instance::calls::{Call, ValueType};
+use crate::instance::library::Binary;
 use crate::instance::log::CATEGORY_ERROR;
-use crate::instance::{handles, snapshot, Instance, Status as Outcome};
-use crate::models::Model;
+use crate::instance::{handles, Instance, Status as Outcome};
 use crate::variables::variable::Kind;
-use crate::variant::registry::Loaded;
-use std::ffi::{c_int, CStr};
+use std::ffi::c_int;
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::sync::Arc;
 
 /// Runs `body` on the live FMI 2.0 instance `c` names (see [`handles::with_instance`]).
 fn with_instance(c: Component, body: impl FnOnce(&mut Instance) -> Outcome) -> Status {
     handles::with_instance(c as usize, &FMI2, body).into()
-}
-
-/// A borrowed C string, or None for NULL or invalid UTF-8.
-unsafe fn text<'a>(s: FmiString) -> Option<&'a str> {
-    if s.is_null() {
-        None
-    } else {
-        CStr::from_ptr(s).to_str().ok()
-    }
-}
-
-/// A slice from a pointer and a length; NULL is only acceptable for an empty slice.
-unsafe fn slice<'a, T>(p: *const T, n: usize) -> Option<&'a [T]> {
-    if n == 0 {
-        Some(&[])
-    } else if p.is_null() {
-        None
-    } else {
-        Some(std::slice::from_raw_parts(p, n))
-    }
-}
-
-unsafe fn slice_mut<'a, T>(p: *mut T, n: usize) -> Option<&'a mut [T]> {
-    if n == 0 {
-        Some(&mut [])
-    } else if p.is_null() {
-        None
-    } else {
-        Some(std::slice::from_raw_parts_mut(p, n))
-    }
 }
 
 pub extern "C" fn fmi2GetTypesPlatform() -> FmiString {
@@ -61,49 +31,6 @@ pub extern "C" fn fmi2GetTypesPlatform() -> FmiString {
 
 pub extern "C" fn fmi2GetVersion() -> FmiString {
     c"2.0".as_ptr()
-}
-
-/// The model and GUID an fmuGUID names among what `binary` carries: a full model's, or else a
-/// variant FMU's, whose resources/variant.toml must describe an interface with that GUID.
-fn model_of_guid(
-    binary: &Binary,
-    guid: &str,
-    resource_location: Option<&str>,
-) -> Result<(&'static Model, &'static str, Option<Arc<Loaded>>), String> {
-    let full: Vec<(&'static Model, &'static str)> = if binary.full_models {
-        binary
-            .models
-            .iter()
-            .filter_map(|m| super::guid(m.table.model_identifier).map(|g| (m, g)))
-            .collect()
-    } else {
-        Vec::new()
-    };
-    if let Some(&(model, guid)) = full.iter().find(|(_, g)| *g == guid) {
-        return Ok((model, guid, None));
-    }
-    let known: Vec<String> = full
-        .iter()
-        .map(|(m, g)| format!("{g} ({})", m.table.model_identifier))
-        .collect();
-    let this = if known.is_empty() {
-        "this binary is a variant FMU's: expected the GUID of the variant in its resources"
-            .to_string()
-    } else {
-        format!(
-            "expected {} (is the modelDescription.xml from another build, or another FMU's?)",
-            known.join(" or ")
-        )
-    };
-    let Some(variants) = binary.variants else {
-        return Err(format!(
-            "fmuGUID \"{guid}\" matches no model of this binary: {this}"
-        ));
-    };
-    variants(guid, resource_location, binary.models)
-        // A variant's instance takes its GUID from the file.
-        .map(|loaded| (loaded.variant.model, "", Some(loaded)))
-        .map_err(|why| format!("fmuGUID \"{guid}\" matches no model of this binary: {this}; {why}"))
 }
 
 /// fmi2Instantiate of a library that carries what `binary` says.
@@ -163,7 +90,7 @@ pub unsafe fn instantiate(
                 ));
             }
         }
-        let (model, guid, variant) = match model_of_guid(binary, guid, location) {
+        let (model, guid, variant) = match binary.model_of(guid, location, "fmuGUID") {
             Ok(found) => found,
             Err(message) => return refuse(message),
         };
@@ -264,35 +191,11 @@ pub unsafe extern "C" fn fmi2Reset(c: Component) -> Status {
     })
 }
 
-fn is_real(kind: &Kind) -> bool {
-    matches!(kind, Kind::Real { .. })
+/// FMI 2.0's Integer covers the Integers and the switches (declared as Integers).
+fn is_integer_or_switch(kind: &Kind) -> bool {
+    is_integer(kind) || is_switch(kind)
 }
 
-fn is_integer(kind: &Kind) -> bool {
-    matches!(kind, Kind::Integer { .. } | Kind::Switch { .. })
-}
-
-fn is_none(_: &Kind) -> bool {
-    false
-}
-
-/// Which variables an FMI getter or setter reaches, and its name for messages.
-#[derive(Clone, Copy)]
-struct Access {
-    call: Call,
-    accepts: fn(&Kind) -> bool,
-    type_name: &'static str,
-}
-
-const fn access(call: Call, accepts: fn(&Kind) -> bool, type_name: &'static str) -> Access {
-    Access {
-        call,
-        accepts,
-        type_name,
-    }
-}
-
-/// Shared body of the getters: `convert` writes the f64 values into the C array.
 unsafe fn get_values<T>(
     c: Component,
     access: Access,
@@ -301,26 +204,9 @@ unsafe fn get_values<T>(
     value: *mut T,
     convert: fn(f64) -> T,
 ) -> Status {
-    let Access {
-        call,
-        accepts,
-        type_name,
-    } = access;
-    with_instance(c, |instance| {
-        let (Some(vrs), Some(out)) = (slice(vr, nvr), slice_mut(value, nvr)) else {
-            return instance.null_argument(call, "vr or value");
-        };
-        instance.get(
-            call,
-            vrs,
-            &mut |i, x| out[i] = convert(x),
-            accepts,
-            type_name,
-        )
-    })
+    values::get_values(c as usize, &FMI2, access, vr, nvr, value, convert).into()
 }
 
-/// Shared body of the setters: `convert` reads the C array as f64 values.
 unsafe fn set_values<T: Copy>(
     c: Component,
     access: Access,
@@ -329,19 +215,7 @@ unsafe fn set_values<T: Copy>(
     value: *const T,
     convert: fn(T) -> f64,
 ) -> Status {
-    let Access {
-        call,
-        accepts,
-        type_name,
-    } = access;
-    with_instance(c, |instance| {
-        let function = instance.function(call);
-        let (Some(vrs), Some(values)) = (slice(vr, nvr), slice(value, nvr)) else {
-            return instance.null_argument(call, "vr or value");
-        };
-        instance.trace(|| format!("{function}(vr = {vrs:?})"));
-        instance.set(call, vrs, &|i| convert(values[i]), accepts, type_name)
-    })
+    values::set_values(c as usize, &FMI2, access, vr, nvr, value, convert).into()
 }
 
 /// # Safety
@@ -374,7 +248,7 @@ pub unsafe extern "C" fn fmi2GetInteger(
         c,
         access(
             Call::Get(ValueType::Int32),
-            is_integer,
+            is_integer_or_switch,
             "Integer or Enumeration",
         ),
         vr,
@@ -450,7 +324,7 @@ pub unsafe extern "C" fn fmi2SetInteger(
         c,
         access(
             Call::Set(ValueType::Int32),
-            is_integer,
+            is_integer_or_switch,
             "Integer or Enumeration",
         ),
         vr,
@@ -496,60 +370,25 @@ pub unsafe extern "C" fn fmi2SetString(
     )
 }
 
-/// The address of the FMU state a slot holds, None for NULL (a new state).
-unsafe fn slot_address(slot: &FmuState) -> Option<usize> {
-    (!slot.is_null()).then_some(*slot as usize)
-}
-
 /// Takes a snapshot into `*state` (a new one if `*state` is NULL, else overwriting one this
 /// instance handed out).
 ///
 /// # Safety
 /// `state` points to an fmi2FMUstate.
 pub unsafe extern "C" fn fmi2GetFMUstate(c: Component, state: *mut FmuState) -> Status {
-    with_instance(c, |instance| {
-        instance.trace(|| "fmi2GetFMUstate()".into());
-        let Some(slot) = state.as_mut() else {
-            return instance.null_argument(Call::GetFMUstate, "FMUstate");
-        };
-        match instance.get_state(slot_address(slot)) {
-            Ok(address) => {
-                *slot = address as FmuState;
-                Outcome::Ok
-            }
-            Err(status) => status,
-        }
-    })
+    states::get(c as usize, &FMI2, state).into()
 }
 
 /// # Safety
 /// `state` from fmi2GetFMUstate.
 pub unsafe extern "C" fn fmi2SetFMUstate(c: Component, state: FmuState) -> Status {
-    with_instance(c, |instance| {
-        instance.trace(|| format!("fmi2SetFMUstate({state:?})"));
-        instance.set_state(state as usize)
-    })
+    states::set(c as usize, &FMI2, state).into()
 }
 
 /// # Safety
 /// `state` points to an fmi2FMUstate from this instance.
 pub unsafe extern "C" fn fmi2FreeFMUstate(c: Component, state: *mut FmuState) -> Status {
-    with_instance(c, |instance| {
-        let Some(slot) = state.as_mut() else {
-            return instance.null_argument(Call::FreeFMUstate, "FMUstate");
-        };
-        let Some(address) = slot_address(slot) else {
-            return instance
-                .check_phase(Call::FreeFMUstate)
-                .err()
-                .unwrap_or(Outcome::Ok);
-        };
-        let status = instance.free_state(address);
-        if status == Outcome::Ok {
-            *slot = std::ptr::null_mut();
-        }
-        status
-    })
+    states::free(c as usize, &FMI2, state).into()
 }
 
 /// # Safety
@@ -559,18 +398,7 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
     state: FmuState,
     size: *mut usize,
 ) -> Status {
-    with_instance(c, |instance| {
-        let Some(size) = size.as_mut() else {
-            return instance.null_argument(Call::SerializedFMUstateSize, "size");
-        };
-        match instance.serialized_state_size(state as usize) {
-            Ok(length) => {
-                *size = length;
-                Outcome::Ok
-            }
-            Err(status) => status,
-        }
-    })
+    states::serialized_size(c as usize, &FMI2, state, size).into()
 }
 
 /// # Safety
@@ -581,17 +409,7 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
     bytes: *mut Byte,
     size: usize,
 ) -> Status {
-    with_instance(c, |instance| {
-        let data = match instance.serialize_state(state as usize, size) {
-            Ok(data) => data,
-            Err(status) => return status,
-        };
-        let Some(out) = slice_mut(bytes as *mut u8, data.len()) else {
-            return instance.null_argument(Call::SerializeFMUstate, "serializedState");
-        };
-        out.copy_from_slice(&data);
-        Outcome::Ok
-    })
+    states::serialize(c as usize, &FMI2, state, bytes as *mut u8, size).into()
 }
 
 /// # Safety
@@ -602,30 +420,7 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     size: usize,
     state: *mut FmuState,
 ) -> Status {
-    with_instance(c, |instance| {
-        instance.trace(|| format!("fmi2DeSerializeFMUstate(size = {size})"));
-        // The header first: a size beyond the length it declares is refused before the data
-        // is read that far.
-        let Some(header) = slice(bytes as *const u8, size.min(snapshot::HEADER)) else {
-            return instance.null_argument(Call::DeSerializeFMUstate, "serializedState");
-        };
-        if let Err(status) = instance.check_serialized_header(header, size) {
-            return status;
-        }
-        let Some(data) = slice(bytes as *const u8, size) else {
-            return instance.null_argument(Call::DeSerializeFMUstate, "serializedState");
-        };
-        let Some(slot) = state.as_mut() else {
-            return instance.null_argument(Call::DeSerializeFMUstate, "FMUstate");
-        };
-        match instance.deserialize_state(data, slot_address(slot)) {
-            Ok(address) => {
-                *slot = address as FmuState;
-                Outcome::Ok
-            }
-            Err(status) => status,
-        }
-    })
+    states::deserialize(c as usize, &FMI2, bytes as *const u8, size, state).into()
 }
 
 /// # Safety

@@ -10,6 +10,7 @@
 
 pub mod calls;
 pub mod handles;
+pub mod library;
 pub mod log;
 pub mod phase;
 pub mod snapshot;

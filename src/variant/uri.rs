@@ -3,10 +3,17 @@
 use std::path::PathBuf;
 
 /// `file:///a/b%20c`, `file:/a/b` or `file://localhost/a/b` to `/a/b c`; Windows drive paths
-/// (`file:///C:/x`) lose the slash before the drive; a plain absolute path `/a/b` stays as it is.
+/// (`file:///C:/x`) lose the slash before the drive; a plain absolute path (`/a/b`, `C:\x`)
+/// stays as it is.
 pub fn file_path(uri: &str) -> Result<PathBuf, String> {
-    // Some importers pass a plain absolute path, as FMI 1.0's fmuLocation could be: take it.
-    if uri.starts_with('/') {
+    // Some importers pass a plain absolute path, as FMI 1.0's fmuLocation could be, and FMI
+    // 3.0's resourcePath is one (`C:\x\` on Windows): take it.
+    let drive = uri
+        .as_bytes()
+        .get(1..3)
+        .is_some_and(|s| s == b":\\" || s == b":/")
+        && uri.as_bytes()[0].is_ascii_alphabetic();
+    if uri.starts_with('/') || drive {
         return Ok(PathBuf::from(uri));
     }
     // The scheme is case-insensitive (RFC 3986, 3.1): FILE: is file:.
