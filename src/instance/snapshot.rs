@@ -9,6 +9,7 @@
 use super::calls::Call;
 use super::phase::Phase;
 use super::Instance;
+use crate::models::Simulation;
 use crate::variables::values::check_value;
 use crate::variables::variable::{Causality, Kind};
 
@@ -63,8 +64,7 @@ impl Snapshot {
                     .into(),
             );
         }
-        let mut values = instance.values.clone();
-        if !values.load(&self.values) {
+        if self.values.len() != instance.values.as_slice().len() {
             return Err(format!(
                 "the FMU state holds {} values; expected {}",
                 self.values.len(),
@@ -72,23 +72,38 @@ impl Snapshot {
             ));
         }
         // Only values the setters would accept (outputs are recomputed from the simulation). An
-        // Integer or Enumeration arrives through fmi2SetInteger, so it is a whole number; check
-        // that here, as check_value lets NaN and fractions through for those kinds.
+        // Integer or Enumeration arrives through an integer setter, so it is a whole number;
+        // check that here, as check_value lets NaN and fractions through for those kinds. The
+        // values are in the table's order.
         let table = instance.model.table;
-        for var in table.variables {
-            if var.causality != Causality::Output {
-                let value = values.real(var.value_reference);
-                let whole = matches!(var.kind, Kind::Real { .. }) || value.fract() == 0.0;
-                if !whole {
-                    return Err(format!(
-                        "the FMU state holds {} = {value}: expected a whole number",
-                        var.name
-                    ));
-                }
-                check_value(table, var, value)
-                    .map_err(|message| format!("the FMU state holds {message}"))?;
+        let given = || {
+            table
+                .variables
+                .iter()
+                .zip(&self.values)
+                .filter(|(var, _)| var.causality != Causality::Output)
+        };
+        for (var, &value) in given() {
+            let whole = matches!(var.kind, Kind::Real { .. }) || value.fract() == 0.0;
+            if !whole {
+                return Err(format!(
+                    "the FMU state holds {} = {value}: expected a whole number",
+                    var.name
+                ));
             }
+            check_value(table, var, value)
+                .map_err(|message| format!("the FMU state holds {message}"))?;
         }
+        // The simulation the instance has can take the state as it is when it was built from
+        // the same values and start time: no build, and no periodic start computed again.
+        let current = instance.values.as_slice();
+        let same_build = self.start_time == instance.start_time
+            && table
+                .variables
+                .iter()
+                .zip(self.values.iter().zip(current))
+                .filter(|(var, _)| var.causality != Causality::Output)
+                .all(|(_, (then, now))| then.to_bits() == now.to_bits());
         // A model exists from the end of initialization on, and only then.
         let needs_simulation =
             !matches!(self.phase, Phase::Instantiated | Phase::InitializationMode);
@@ -107,25 +122,46 @@ impl Snapshot {
                 }
             ));
         }
-        let sim = match &self.sim {
-            None => None,
-            Some(state) => {
-                let mut sim = (instance.model.build)(&values, self.start_time, &instance.scope)?;
-                sim.restore(state)?;
-                // A simulation whose clock is not the instance's would step from another time (a
-                // forged state could make a step that never ends). A failed step is rolled
-                // back, so this holds in StepFailed too.
-                if sim.time() != self.time {
-                    return Err(format!(
-                        "the FMU state's model is at t = {} but the state says t = {}: expected the same time",
-                        sim.time(),
-                        self.time
-                    ));
-                }
-                Some(sim)
+        // A simulation whose clock is not the instance's would step from another time (a forged
+        // state could make a step that never ends). A failed step is rolled back, so this holds
+        // in StepFailed too.
+        let same_time = |sim: &dyn Simulation| {
+            if sim.time() == self.time {
+                Ok(())
+            } else {
+                Err(format!(
+                    "the FMU state's model is at t = {} but the state says t = {}: expected the same time",
+                    sim.time(),
+                    self.time
+                ))
             }
         };
-        instance.values = values;
+        let sim = match &self.sim {
+            None => None,
+            Some(state) => match instance.sim.take() {
+                Some(mut sim) if same_build => {
+                    sim.save_into(&mut instance.rollback);
+                    if let Err(why) = sim.restore(state).and_then(|()| same_time(&*sim)) {
+                        // A refused state leaves the instance as it was.
+                        let _ = sim.restore(&instance.rollback);
+                        instance.sim = Some(sim);
+                        return Err(why);
+                    }
+                    Some(sim)
+                }
+                other => {
+                    instance.sim = other;
+                    let mut values = instance.values.clone();
+                    values.load(&self.values);
+                    let mut sim =
+                        (instance.model.build)(&values, self.start_time, &instance.scope)?;
+                    sim.restore(state)?;
+                    same_time(&*sim)?;
+                    Some(sim)
+                }
+            },
+        };
+        instance.values.load(&self.values);
         instance.sim = sim;
         instance.outputs_current = false;
         instance.phase = self.phase;

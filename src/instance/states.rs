@@ -68,11 +68,17 @@ impl Instance {
         if let Err(status) = self.check_phase(Call::SetFMUstate) {
             return status;
         }
-        let state = match self.own_state(Call::SetFMUstate, address) {
-            Ok(state) => state.clone(),
-            Err(status) => return status,
+        if let Err(status) = self.own_state(Call::SetFMUstate, address) {
+            return status;
+        }
+        // Out of the list while it restores the instance (no copy), and back after.
+        let Some(i) = self.state_index(address) else {
+            return Status::Error;
         };
-        match state.restore(self) {
+        let state = self.snapshots.swap_remove(i);
+        let restored = state.restore(self);
+        self.snapshots.push(state);
+        match restored {
             Ok(()) => Status::Ok,
             Err(message) => {
                 let function = self.function(Call::SetFMUstate);
