@@ -14,13 +14,13 @@ use crate::boundary::states;
 use crate::boundary::values::{self, access, is_integer, is_none, is_real, is_switch, Access};
 use crate::instance::calls::{Call, ValueType};
 use crate::instance::library::Binary;
-use crate::instance::log::{LogSink, Status as Outcome, CATEGORY_ERROR};
+use crate::instance::log::{LogSink, CATEGORY_ERROR};
 use crate::instance::{handles, Instance};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 /// Runs `body` on the live FMI 3.0 instance `c` names (see [`handles::with_instance`]).
-fn with_instance(c: FmiInstance, body: impl FnOnce(&mut Instance) -> Outcome) -> Status {
-    handles::with_instance(c as usize, &FMI3, body).into()
+fn with_instance(c: FmiInstance, body: impl FnOnce(&mut Instance) -> Status) -> Status {
+    handles::with_instance(c as usize, &FMI3, body)
 }
 
 /// Refuses what these FMUs do not offer, naming the function and why.
@@ -90,7 +90,7 @@ pub unsafe fn instantiate_co_simulation(
         let logger = Logger::new(log_message, environment);
         let refuse = |message: String| {
             logger.log(
-                Outcome::Error,
+                Status::Error,
                 CATEGORY_ERROR,
                 &format!("fmi3InstantiateCoSimulation: {message}"),
             );
@@ -135,7 +135,7 @@ unsafe fn refuse_instantiation(
 ) -> FmiInstance {
     let _ = catch_unwind(AssertUnwindSafe(|| {
         Logger::new(log_message, environment).log(
-            Outcome::Error,
+            Status::Error,
             CATEGORY_ERROR,
             &format!("{function}: {why}"),
         );
@@ -212,7 +212,7 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
             start_time,
             (stop_time_defined != FALSE).then_some(stop_time),
         );
-        if status != Outcome::Ok {
+        if status != Status::Ok {
             return status;
         }
         instance.enter_initialization_mode()
@@ -277,7 +277,7 @@ unsafe fn get_values<T>(
     if let Some(status) = check_count(c, access.call, nvr, n_values) {
         return status;
     }
-    values::get_values(c as usize, &FMI3, access, vr, nvr, value, convert).into()
+    values::get_values(c as usize, &FMI3, access, vr, nvr, value, convert)
 }
 
 /// The FMI 3.0 setter of one type.
@@ -293,7 +293,7 @@ unsafe fn set_values<T: Copy>(
     if let Some(status) = check_count(c, access.call, nvr, n_values) {
         return status;
     }
-    values::set_values(c as usize, &FMI3, access, vr, nvr, value, convert).into()
+    values::set_values(c as usize, &FMI3, access, vr, nvr, value, convert)
 }
 
 /// The getter and setter of one FMI 3.0 type: C names, the type's [`ValueType`], its C type,
@@ -523,19 +523,19 @@ pub unsafe extern "C" fn fmi3GetVariableDependencies(
 /// # Safety
 /// `state` points to an fmi3FMUState.
 pub unsafe extern "C" fn fmi3GetFMUState(c: FmiInstance, state: *mut FmuState) -> Status {
-    states::get(c as usize, &FMI3, state).into()
+    states::get(c as usize, &FMI3, state)
 }
 
 /// # Safety
 /// `state` from fmi3GetFMUState.
 pub unsafe extern "C" fn fmi3SetFMUState(c: FmiInstance, state: FmuState) -> Status {
-    states::set(c as usize, &FMI3, state).into()
+    states::set(c as usize, &FMI3, state)
 }
 
 /// # Safety
 /// `state` points to an fmi3FMUState from this instance.
 pub unsafe extern "C" fn fmi3FreeFMUState(c: FmiInstance, state: *mut FmuState) -> Status {
-    states::free(c as usize, &FMI3, state).into()
+    states::free(c as usize, &FMI3, state)
 }
 
 /// # Safety
@@ -545,7 +545,7 @@ pub unsafe extern "C" fn fmi3SerializedFMUStateSize(
     state: FmuState,
     size: *mut usize,
 ) -> Status {
-    states::serialized_size(c as usize, &FMI3, state, size).into()
+    states::serialized_size(c as usize, &FMI3, state, size)
 }
 
 /// # Safety
@@ -556,7 +556,7 @@ pub unsafe extern "C" fn fmi3SerializeFMUState(
     bytes: *mut Byte,
     size: usize,
 ) -> Status {
-    states::serialize(c as usize, &FMI3, state, bytes, size).into()
+    states::serialize(c as usize, &FMI3, state, bytes, size)
 }
 
 /// # Safety
@@ -567,7 +567,7 @@ pub unsafe extern "C" fn fmi3DeserializeFMUState(
     size: usize,
     state: *mut FmuState,
 ) -> Status {
-    states::deserialize(c as usize, &FMI3, bytes, size, state).into()
+    states::deserialize(c as usize, &FMI3, bytes, size, state)
 }
 
 /// # Safety

@@ -186,6 +186,17 @@ impl Instance {
         self.logger.log(Status::Warning, CATEGORY_WARNING, message);
     }
 
+    /// Logs each of `warnings` that is there, after the function's name: a warning status
+    /// where there is one, OK where there is none.
+    fn warn_all(&self, function: &str, warnings: &[Option<String>]) -> Status {
+        let mut status = Status::Ok;
+        for message in warnings.iter().flatten() {
+            self.warning(&format!("{function}: {message}"));
+            status = Status::Warning;
+        }
+        status
+    }
+
     pub fn trace(&self, message: impl FnOnce() -> String) {
         if self.log_calls {
             self.logger.log(Status::Ok, CATEGORY_CALLS, &message());
@@ -298,14 +309,7 @@ impl Instance {
                     found,
                     self.unread_inputs.start(self.model.table, &self.values),
                 ];
-                for message in warnings.iter().flatten() {
-                    self.warning(&format!("{function}: {message}"));
-                }
-                if warnings.iter().any(Option::is_some) {
-                    Status::Warning
-                } else {
-                    Status::Ok
-                }
+                self.warn_all(function, &warnings)
             }
             Err(message) => self.error(&format!("{function}: {message}")),
         }

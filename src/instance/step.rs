@@ -76,14 +76,7 @@ impl Instance {
                 };
                 self.clock_warned |= clock.is_some();
                 let warnings = [sim.take_warning(), clock];
-                for message in warnings.iter().flatten() {
-                    self.warning(&format!("{function}: {message}"));
-                }
-                if warnings.iter().any(Option::is_some) {
-                    Status::Warning
-                } else {
-                    Status::Ok
-                }
+                self.warn_all(function, &warnings)
             }
             Err(message) => {
                 // Back to where the step started, so that outputs, their derivatives and FMU
