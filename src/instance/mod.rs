@@ -16,6 +16,7 @@ pub mod phase;
 pub mod snapshot;
 mod states;
 mod step;
+pub use step::Stepped;
 mod values;
 
 use crate::models::{Model, Scope, Simulation};
@@ -74,6 +75,9 @@ pub struct Instance {
     pending_derivatives: Vec<(u32, f64)>,
     /// Inputs set while their switch says they are not read.
     unread_inputs: UnreadInputs,
+    /// The communication step under way: while its internal steps are taken one at a time, and
+    /// until a step has ended.
+    step: Option<step::StepUnderWay>,
     /// Whether this run has said that the clock bounds the readings' accuracy.
     clock_warned: bool,
     /// Whether the outputs in `values` are those of the current state and inputs. Outputs are
@@ -131,6 +135,7 @@ impl Instance {
             snapshots: Vec::new(),
             rollback: Vec::with_capacity(ROLLBACK_CAPACITY),
             unread_inputs: UnreadInputs::default(),
+            step: None,
             clock_warned: false,
             outputs_current: false,
             positions: positions(model.table),
@@ -337,6 +342,7 @@ impl Instance {
         self.last_successful_time = 0.0;
         self.pending_derivatives.clear();
         self.unread_inputs.clear();
+        self.step = None;
         self.clock_warned = false;
         self.outputs_current = false;
         Status::Ok

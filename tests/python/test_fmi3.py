@@ -9,6 +9,9 @@
 - Variable communication steps and output derivatives give what the FMI 2.0 FMU gives.
 - Switches are Enumerations, set with fmi3SetInt64; the messages name FMI 3.0's functions and
   states.
+- An importer's intermediate-update callback is called at the end of each internal step inside a
+  communication step; an input it sets there drives the model from that time on, exactly as a
+  communication point there would.
 """
 import ctypes
 import pathlib
@@ -60,7 +63,7 @@ def test_every_output_equals_the_fmi2_fmus(name, variant):
 class Slave3:
     """An FMU3Slave of an FMI 3.0 FMU of ours, with its log captured."""
 
-    def __init__(self, name, instance_name="instance"):
+    def __init__(self, name, instance_name="instance", intermediate_update=None):
         self.path = fmi3_path(name)
         self.md = fmpy.read_model_description(self.path)
         self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
@@ -75,7 +78,7 @@ class Slave3:
         def log(environment, status, category, message):
             self.messages.append((status, message.decode("utf-8", errors="replace")))
 
-        self.fmu.instantiate(logMessage=log)
+        self.fmu.instantiate(logMessage=log, intermediateUpdate=intermediate_update)
 
     def initialize(self, **integers):
         for name, value in integers.items():
@@ -220,3 +223,63 @@ def test_ecos_runs_the_fmi3_fmus_as_fmpy_runs_the_fmi2_ones(model, tmp_path):
         scale = np.ptp(want) or np.max(np.abs(want)) or 1.0
         error = np.max(np.abs(result[f"m.{output}"] - want)) / scale
         assert error <= 1e-9, f"{model}.{output}: {error:.2e} of its range"
+
+
+def test_inputs_set_at_the_internal_steps_drive_the_model_from_there():
+    """LongitudinalFriction driven through vr_in, the base's velocity vc + va cos(2 pi f t) given by
+    the importer. With an intermediate-update callback that sets vr_in at every internal step, the
+    run equals (to 1e-12 of FT's range) one without the callback whose communication points are
+    the callback's times as well, setting vr_in there: the FMU calls back inside the step, at its
+    own steps, and takes the input from that time on. Outputs read in the callback move."""
+    seen = []
+
+    def update(environment, time, set_requested, get_allowed, finished, can_return_early, early, early_time):
+        assert set_requested and get_allowed and finished and not can_return_early
+        seen.append((time, slave.fmu.getFloat64([slave.vr["FT"]])[0]))
+        slave.fmu.setFloat64([slave.vr["vr_in"]], [velocity(time)])
+
+    def start(instance):
+        items = {i.name: int(i.value) for i in next(t for t in instance.md.typeDefinitions
+                                                    if t.name == "VelocitySource").items}
+        instance.fmu.setInt64([instance.vr["velocity_source"]], [items["input"]])
+        instance.fmu.enterInitializationMode(startTime=0.0)
+        instance.fmu.setFloat64([instance.vr["vr_in"]], [velocity(0.0)])
+        instance.fmu.exitInitializationMode()
+
+    probe = Slave3("LongitudinalFriction", "probe")
+    probe.fmu.enterInitializationMode(startTime=0.0)
+    vc, va, f = probe.fmu.getFloat64([probe.vr[n] for n in ("vc", "va", "f")])
+    probe.fmu.freeInstance()
+
+    def velocity(t):
+        return vc + va * np.cos(2 * np.pi * f * t)
+
+    h = 0.37 / f
+    slave = Slave3("LongitudinalFriction", intermediate_update=update)
+    start(slave)
+    points, outputs = [0.0], []
+    for i in range(40):
+        t = i * h
+        slave.fmu.setFloat64([slave.vr["vr_in"]], [velocity(t)])
+        before = len(seen)
+        assert slave.do_step(t, h) == (0, t + h), slave.messages[-1:]
+        inside = [time for time, _ in seen[before:]]
+        assert all(t < time < t + h for time in inside)
+        points += inside + [t + h]
+        outputs.append(slave.fmu.getFloat64([slave.vr["FT"]])[0])
+    assert len(seen) > 40, "no internal step inside the communication steps"
+    assert np.ptp([ft for _, ft in seen]) > 0
+    slave.free()
+
+    plain = Slave3("LongitudinalFriction", "plain")
+    start(plain)
+    want = []
+    for t, end in zip(points, points[1:]):
+        plain.fmu.setFloat64([plain.vr["vr_in"]], [velocity(t)])
+        assert plain.do_step(t, end - t)[0] == 0
+        if any(abs(end - (i + 1) * h) < 1e-15 for i in range(40)):
+            want.append(plain.fmu.getFloat64([plain.vr["FT"]])[0])
+    plain.free()
+    assert len(want) == len(outputs)
+    scale = np.ptp(want)
+    assert np.max(np.abs(np.array(outputs) - want)) <= 1e-12 * scale
