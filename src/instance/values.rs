@@ -17,10 +17,15 @@ impl Instance {
         accepts: fn(&Kind) -> bool,
         type_name: &str,
     ) -> Result<&'static Variable, Status> {
-        let visible = self
-            .position(value_reference)
-            .map(|position| &self.model.table.variables[position])
-            .filter(|v| self.scope.exposes(v.value_reference));
+        let independent = self
+            .dialect
+            .independent
+            .filter(|v| v.value_reference == value_reference);
+        let visible = independent.or_else(|| {
+            self.position(value_reference)
+                .map(|position| &self.model.table.variables[position])
+                .filter(|v| self.scope.exposes(v.value_reference))
+        });
         match visible {
             Some(var) if accepts(&var.kind) => Ok(var),
             Some(var) => Err(self.error(&format!(
@@ -95,9 +100,15 @@ impl Instance {
         // evaluated, e.g. at an absurd start time, or a step can leave one in an output). Every
         // reference was found above.
         let values = self.values.as_slice();
-        let value = |vr: u32| {
-            self.position(vr)
-                .map_or(f64::NAN, |position| values[position])
+        let time = self
+            .dialect
+            .independent
+            .map(|v| (v.value_reference, self.time));
+        let value = |vr: u32| match time {
+            Some((independent, t)) if vr == independent => t,
+            _ => self
+                .position(vr)
+                .map_or(f64::NAN, |position| values[position]),
         };
         if let Some(&vr) = value_references.iter().find(|&&vr| !value(vr).is_finite()) {
             let name = self.model.table.variable(vr).map_or("?", |v| v.name);
@@ -145,10 +156,15 @@ impl Instance {
                     self.phase != StepComplete || var.variability == Variability::Tunable
                 }
                 Causality::Output | Causality::Independent => {
+                    let what = if var.causality == Causality::Output {
+                        "an output"
+                    } else {
+                        "the independent variable"
+                    };
                     return self.error(&format!(
-                        "{function}: {} is an output: it can be read, not set",
+                        "{function}: {} is {what}: it can be read, not set",
                         var.name
-                    ))
+                    ));
                 }
             };
             if !writable {

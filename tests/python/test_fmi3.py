@@ -7,8 +7,7 @@
 - A step that cannot be completed returns fmi3Discard with lastSuccessfulTime where the instance
   is, which is where the step started.
 - Variable communication steps and output derivatives give what the FMI 2.0 FMU gives.
-- Switches are Enumerations, set with fmi3SetInt64; the messages name FMI 3.0's functions and
-  states.
+- Switches are Int32, as in FMI 2.0; the messages name FMI 3.0's functions and states.
 - An importer's intermediate-update callback is called at the end of each internal step inside a
   communication step; an input it sets there drives the model from that time on, exactly as a
   communication point there would.
@@ -60,6 +59,14 @@ def test_every_output_equals_the_fmi2_fmus(name, variant):
         assert abs(got - want).max() <= 1e-12 * scale, f"{name}.{output}"
 
 
+def item(md, switch, name):
+    """The number of a switch's item, from the description that lists them ("(1 a, 2 b)")."""
+    description = next(v.description for v in md.modelVariables if v.name == switch)
+    listed = description[description.rindex("(") + 1:description.rindex(")")]
+    return next(int(number) for number, label in (entry.split(" ", 1) for entry in listed.split(", "))
+                if label == name)
+
+
 class Slave3:
     """An FMU3Slave of an FMI 3.0 FMU of ours, with its log captured."""
 
@@ -82,7 +89,7 @@ class Slave3:
 
     def initialize(self, **integers):
         for name, value in integers.items():
-            self.fmu.setInt64([self.vr[name]], [value])
+            self.fmu.setInt32([self.vr[name]], [value])
         self.fmu.enterInitializationMode(startTime=0.0)
         self.fmu.exitInitializationMode()
 
@@ -165,6 +172,7 @@ def test_variable_steps_and_output_derivatives_are_the_fmi2_fmus(name):
         assert three.do_step(t, h) == (0, t + h)
         t += h
         assert three.fmu.getFloat64(outputs) == two.fmu.getReal(outputs)
+        assert three.fmu.getFloat64([three.vr["time"]]) == [t]
     if md.coSimulation.maxOutputDerivativeOrder:
         reals = [v.valueReference for v in md.modelVariables if v.causality == "output"]
         assert three.fmu.getOutputDerivatives(reals, [1] * len(reals)) == \
@@ -173,17 +181,22 @@ def test_variable_steps_and_output_derivatives_are_the_fmi2_fmus(name):
     three.free()
 
 
-def test_switches_are_set_with_int64_and_refused_as_int32():
+def test_switches_are_int32_as_in_fmi2_and_refused_as_int64():
+    """Switches are Int32 with their items in the description (docs/interoperability.md, FMI
+    3.0: why not Enumerations); an Int64 setter names what it reached."""
     slave = Slave3("TransverseFriction")
     solver = slave.vr["solver"]
-    items = {item.name: int(item.value) for item in
-             next(t for t in slave.md.typeDefinitions if t.name == slave.md.modelVariables[
-                 [v.valueReference for v in slave.md.modelVariables].index(solver)].declaredType.name).items}
-    slave.fmu.setInt64([solver], [items["dop853"]])
-    assert slave.fmu.getInt64([solver]) == [items["dop853"]]
+    variable = next(v for v in slave.md.modelVariables if v.name == "solver")
+    assert variable.type == "Int32"
+    assert "6 dop853" in variable.description
+    slave.fmu.setInt32([solver], [6])
+    assert slave.fmu.getInt32([solver]) == [6]
     with pytest.raises(FMICallException):
-        slave.fmu.setInt32([solver], [items["dop853"]])
-    assert "not a Int32 variable" in slave.messages[-1][1]
+        slave.fmu.setFloat64([slave.vr["time"]], [1.0])
+    assert "time is the independent variable: it can be read, not set" in slave.messages[-1][1]
+    with pytest.raises(FMICallException):
+        slave.fmu.setInt64([solver], [6])
+    assert "fmi3SetInt64: value reference 2 is solver, not a Int64 variable" in slave.messages[-1][1]
     slave.fmu.freeInstance()
 
 
@@ -239,8 +252,7 @@ def test_inputs_set_at_the_internal_steps_drive_the_model_from_there():
         slave.fmu.setFloat64([slave.vr["vr_in"]], [velocity(time)])
 
     def start(instance):
-        items = {i.name: int(i.value) for i in next(t for t in instance.md.typeDefinitions
-                                                    if t.name == "VelocitySource").items}
+        items = {"input": 2}  # VelocitySource's items: 1 prescribed, 2 input
         instance.fmu.setInt64([instance.vr["velocity_source"]], [items["input"]])
         instance.fmu.enterInitializationMode(startTime=0.0)
         instance.fmu.setFloat64([instance.vr["vr_in"]], [velocity(0.0)])
