@@ -16,6 +16,7 @@ from fmpy.simulation import apply_start_values
 from fmpy.validation import validate_fmu
 
 from conftest import FMU_DIR, ROOT
+from friction_fmu import switches
 
 MODELS = ["LongitudinalFriction", "TransverseFriction", "DryFrictionOscillator", "DriveTrain"]
 VARIANT_NAMES = sorted(p.stem for p in (FMU_DIR / "variants").glob("*.fmu"))
@@ -126,6 +127,15 @@ def test_the_fmi3_fmu_carries_the_fmi2_library_and_files(fmi2, fmi3):
 def test_the_committed_fmi3_descriptions_are_the_packed_ones(model):
     committed = (ROOT / "modelDescription" / "fmi3" / f"{model}.xml").read_bytes()
     assert members(FMU_DIR / "fmi3" / f"{model}.fmu")["modelDescription.xml"] == committed
+
+
+@pytest.mark.parametrize("fmi2,fmi3", PAIRS, ids=IDS)
+def test_the_python_package_reads_the_same_switch_items(fmi2, fmi3):
+    md2, md3 = fmpy.read_model_description(str(fmi2)), fmpy.read_model_description(str(fmi3))
+    items = lambda md: {v.name: switches.items(v) for v in md.modelVariables  # noqa: E731
+                        if switches.items(v) is not None}
+    assert items(md3) == items(md2)
+    assert items(md2) or fmi2.parent.name == "variants"
 
 
 class Recorder:
