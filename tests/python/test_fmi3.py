@@ -190,6 +190,7 @@ def test_switches_are_int32_as_in_fmi2_and_refused_as_int64():
     assert variable.type == "Int32"
     assert "6 dop853" in variable.description
     slave.fmu.setInt32([solver], [6])
+    slave.fmu.enterInitializationMode(startTime=0.0)
     assert slave.fmu.getInt32([solver]) == [6]
     with pytest.raises(FMICallException):
         slave.fmu.setFloat64([slave.vr["time"]], [1.0])
@@ -239,8 +240,8 @@ def test_ecos_runs_the_fmi3_fmus_as_fmpy_runs_the_fmi2_ones(model, tmp_path):
 
 
 def test_inputs_set_at_the_internal_steps_drive_the_model_from_there():
-    """LongitudinalFriction driven through vr_in, the base's velocity vc + va cos(2 pi f t) given by
-    the importer. With an intermediate-update callback that sets vr_in at every internal step, the
+    """LongitudinalFriction (dopri5) driven through vr_in, the base's velocity vc + va cos(2 pi f t)
+    given by the importer, at communication steps of 3.7 vibration periods. With an intermediate-update callback that sets vr_in at every internal step, the
     run equals (to 1e-12 of FT's range) one without the callback whose communication points are
     the callback's times as well, setting vr_in there: the FMU calls back inside the step, at its
     own steps, and takes the input from that time on. Outputs read in the callback move."""
@@ -252,8 +253,9 @@ def test_inputs_set_at_the_internal_steps_drive_the_model_from_there():
         slave.fmu.setFloat64([slave.vr["vr_in"]], [velocity(time)])
 
     def start(instance):
-        items = {"input": 2}  # VelocitySource's items: 1 prescribed, 2 input
-        instance.fmu.setInt64([instance.vr["velocity_source"]], [items["input"]])
+        source = item(instance.md, "velocity_source", "input")
+        instance.fmu.setInt32([instance.vr["velocity_source"]], [source])
+        instance.fmu.setInt32([instance.vr["solver"]], [item(instance.md, "solver", "dopri5")])
         instance.fmu.enterInitializationMode(startTime=0.0)
         instance.fmu.setFloat64([instance.vr["vr_in"]], [velocity(0.0)])
         instance.fmu.exitInitializationMode()
@@ -266,20 +268,24 @@ def test_inputs_set_at_the_internal_steps_drive_the_model_from_there():
     def velocity(t):
         return vc + va * np.cos(2 * np.pi * f * t)
 
-    h = 0.37 / f
+    h = 3.7 / f
     slave = Slave3("LongitudinalFriction", intermediate_update=update)
     start(slave)
     points, outputs = [0.0], []
-    for i in range(40):
+    for i in range(20):
         t = i * h
         slave.fmu.setFloat64([slave.vr["vr_in"]], [velocity(t)])
         before = len(seen)
-        assert slave.do_step(t, h) == (0, t + h), slave.messages[-1:]
+        # The input scheme's watch for an unstable coupling counts each internal step as a
+        # communication step and may warn here (docs/interoperability.md, "What the FMI 3.0
+        # functions do"); nothing else may.
+        status, last = slave.do_step(t, h)
+        assert last == t + h and (status == 0 or "input_scheme" in slave.messages[-1][1]), slave.messages[-1:]
         inside = [time for time, _ in seen[before:]]
         assert all(t < time < t + h for time in inside)
         points += inside + [t + h]
         outputs.append(slave.fmu.getFloat64([slave.vr["FT"]])[0])
-    assert len(seen) > 40, "no internal step inside the communication steps"
+    assert len(seen) > 100, "few internal steps inside the communication steps"
     assert np.ptp([ft for _, ft in seen]) > 0
     slave.free()
 
@@ -288,8 +294,8 @@ def test_inputs_set_at_the_internal_steps_drive_the_model_from_there():
     want = []
     for t, end in zip(points, points[1:]):
         plain.fmu.setFloat64([plain.vr["vr_in"]], [velocity(t)])
-        assert plain.do_step(t, end - t)[0] == 0
-        if any(abs(end - (i + 1) * h) < 1e-15 for i in range(40)):
+        assert plain.do_step(t, end - t)[0] <= 1
+        if any(abs(end - (i + 1) * h) < 1e-15 for i in range(20)):
             want.append(plain.fmu.getFloat64([plain.vr["FT"]])[0])
     plain.free()
     assert len(want) == len(outputs)
