@@ -184,7 +184,10 @@ impl Instance {
             self.outputs_current = false;
         }
         for (i, &vr) in value_references.iter().enumerate() {
-            self.values.set(vr, value_at(i));
+            // Every reference was found above, through the instance's index.
+            if let Some(position) = self.position(vr) {
+                self.values.set_at(position, value_at(i));
+            }
             let running = self.phase == StepComplete;
             if let Some(message) =
                 self.unread_inputs
@@ -197,7 +200,10 @@ impl Instance {
             // held unless told otherwise (FMI 2.0, 4.2.1, leaves this open; holding is what a
             // master that sets no derivative means).
             if self.model.table.interpolates_inputs
-                && self.model.table.variable(vr).map(|v| v.causality) == Some(Causality::Input)
+                && self
+                    .position(vr)
+                    .map(|position| self.model.table.variables[position].causality)
+                    == Some(Causality::Input)
             {
                 self.pending_derivatives.retain(|&(r, _)| r != vr);
                 if let Some(sim) = self.sim.as_mut() {
