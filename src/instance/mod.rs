@@ -75,6 +75,9 @@ pub struct Instance {
     pending_derivatives: Vec<(u32, f64)>,
     /// Inputs set while their switch says they are not read.
     unread_inputs: UnreadInputs,
+    /// The simulation built in initialization to compute the outputs read there, kept for
+    /// exiting initialization (see `exit_initialization_mode`).
+    draft: Option<Box<dyn Simulation>>,
     /// The communication step under way: while its internal steps are taken one at a time, and
     /// until a step has ended.
     step: Option<step::StepUnderWay>,
@@ -135,6 +138,7 @@ impl Instance {
             snapshots: Vec::new(),
             rollback: Vec::with_capacity(ROLLBACK_CAPACITY),
             unread_inputs: UnreadInputs::default(),
+            draft: None,
             step: None,
             clock_warned: false,
             outputs_current: false,
@@ -292,8 +296,15 @@ impl Instance {
             return status;
         }
         let function = self.function(Call::ExitInitializationMode);
+        // The simulation built to compute outputs read in initialization, while the values it
+        // was built from stand (the outputs are still current): no second build.
+        let drafted = self.draft.take().filter(|_| self.outputs_current);
         self.outputs_current = false;
-        match (self.model.build)(&self.values, self.start_time, &self.scope) {
+        let built = match drafted {
+            Some(sim) => Ok(sim),
+            None => (self.model.build)(&self.values, self.start_time, &self.scope),
+        };
+        match built {
             Ok(mut sim) => {
                 // What the build could not mend (a periodic start that fell back to the
                 // transient, a law the solvers cannot resolve): said by the call that built it.
@@ -342,6 +353,7 @@ impl Instance {
         self.last_successful_time = 0.0;
         self.pending_derivatives.clear();
         self.unread_inputs.clear();
+        self.draft = None;
         self.step = None;
         self.clock_warned = false;
         self.outputs_current = false;

@@ -46,7 +46,8 @@ impl Instance {
     }
 
     /// Outputs follow the current state and inputs; in initialisation mode they are computed
-    /// from a simulation built from the values set so far. Computed once until either changes.
+    /// from a simulation built from the values set so far, which exiting initialization then
+    /// takes if nothing changed since. Computed once until either changes.
     fn refresh_outputs(&mut self, function: &str) -> Result<(), Status> {
         if self.outputs_current {
             return Ok(());
@@ -60,6 +61,7 @@ impl Instance {
             Ok(sim) => {
                 sim.write_outputs(&mut self.values);
                 self.outputs_current = true;
+                self.draft = Some(sim);
                 Ok(())
             }
             Err(message) => Err(self.error(&format!(
