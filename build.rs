@@ -1,8 +1,10 @@
-//! Writes, into OUT_DIR only, every model's modelDescription.xml (from its variable table,
-//! `src/models/<model>/table.rs`) and the GUIDs (a hash of each XML) that `fmi2Instantiate`
-//! checks, so the binary and its XML can never drift apart. The XML comes from
+//! Writes, into OUT_DIR only, every model's modelDescription.xml for FMI 2.0 and FMI 3.0 (from
+//! its variable table, `src/models/<model>/table.rs`) and the GUIDs (a hash of the FMI 2.0 XML)
+//! that `fmi2Instantiate` checks and that the FMI 3.0 XML names as its instantiationToken, so
+//! the binary and its XML can never drift apart. The XML comes from
 //! `src/model_description`, the writer the library uses for variants. `friction-fmu build` copies
-//! the XML to `modelDescription/`, where a test checks that the committed copy is current.
+//! the XML to `modelDescription/` and `modelDescription/fmi3/`, where a test checks that the
+//! committed copies are current.
 
 #[allow(dead_code)]
 #[path = "src/variables/mod.rs"]
@@ -23,7 +25,7 @@ macro_rules! models {
 }
 include!("src/models/list.rs");
 
-#[allow(dead_code)]
+#[allow(dead_code, unused_imports)]
 #[path = "src/model_description/mod.rs"]
 mod model_description;
 
@@ -47,14 +49,23 @@ fn main() {
     let out_dir = std::env::var("OUT_DIR").expect("cargo sets OUT_DIR");
     let mut guids = String::from("/// GUID of each model: a hash of its modelDescription.xml.\npub const GUIDS: &[(&str, &str)] = &[\n");
     let mut xmls = String::from("/// Each model's modelDescription.xml, as packed into its FMU.\npub const XMLS: &[(&str, &str)] = &[\n");
+    let mut xmls3 = String::from("/// Each model's FMI 3.0 modelDescription.xml, as packed into its FMI 3.0 FMU.\npub const FMI3_XMLS: &[(&str, &str)] = &[\n");
     for table in TABLES {
         let variables: Vec<&Variable> = table.variables.iter().collect();
-        let (guid, xml) = Description::full(table, &variables).write();
+        let description = Description::full(table, &variables);
+        let (guid, xml) = description.write();
+        let xml3 = description.write_fmi3(&guid);
         let _ = writeln!(guids, "    ({:?}, {:?}),", table.model_identifier, guid);
         let _ = writeln!(xmls, "    ({:?}, {:?}),", table.model_identifier, xml);
+        let _ = writeln!(xmls3, "    ({:?}, {:?}),", table.model_identifier, xml3);
     }
     guids.push_str("];\n");
     xmls.push_str("];\n");
+    xmls3.push_str("];\n");
     write_if_changed(&Path::new(&out_dir).join("guids.rs"), &guids);
     write_if_changed(&Path::new(&out_dir).join("model_descriptions.rs"), &xmls);
+    write_if_changed(
+        &Path::new(&out_dir).join("model_descriptions_fmi3.rs"),
+        &xmls3,
+    );
 }

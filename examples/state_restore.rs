@@ -64,7 +64,11 @@ fn main() {
     });
     for (model, setting) in cases {
         let id = model.table.model_identifier;
-        let start = if setting.is_some() { "periodic" } else { "default" };
+        let start = if setting.is_some() {
+            "periodic"
+        } else {
+            "default"
+        };
         let mut sliding = started(model, setting);
         let mut restoring = started(model, setting);
         let state = restoring.get_fmu_state().expect("a state");

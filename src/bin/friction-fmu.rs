@@ -1,12 +1,15 @@
 //! friction-fmu: builds the FMUs and prints what they compute beside the papers.
 //!
 //!   friction-fmu build [--out DIR]   pack every model into DIR/<Model>.fmu (default fmu-out) and
-//!                                    the drive-coupled system into DIR/DriveFriction.ssp
+//!                                    DIR/fmi3/<Model>.fmu (FMI 3.0), and the drive-coupled
+//!                                    system into DIR/DriveFriction.ssp
 //!   friction-fmu build FILE.toml... [--out DIR]
 //!                                    pack each variant into DIR/<name>.fmu: the model's
-//!                                    library with only the variables the file keeps
+//!                                    library with only the variables the file keeps; the FMI
+//!                                    3.0 FMU into DIR/fmi3/<name>.fmu, or for a DIR named
+//!                                    variants, into fmi3/variants beside it
 //!   friction-fmu run [--out DIR]     build, pack the shipped variants/*.toml into
-//!                                    DIR/variants, then print each scene's tables beside the
+//!                                    DIR/variants (and DIR/fmi3/variants), then print each scene's tables beside the
 //!                                    papers' and write figures into DIR/figures (the default
 //!                                    command)
 //!   friction-fmu report [--out DIR]  error against run time of every solver of every scene:
@@ -19,20 +22,42 @@
 //! it by the Python package, with .venv's interpreter when it has matplotlib
 //! (report::figure::draw).
 
+use friction_fmu::package::Standard;
 use friction_fmu::{models, package, report, variant};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::OnceLock;
 
-const USAGE: &str = "usage: friction-fmu [build [VARIANT.toml...]|run|report] [--out DIR] [--version]\n  (no command: run)\n  build   pack every model into DIR/<Model>.fmu (default DIR: fmu-out) and the drive-coupled system into DIR/DriveFriction.ssp\n          or, given variants, each into DIR/<name>.fmu with only the variables it keeps\n  run     build, pack variants/*.toml into DIR/variants, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.png/.svg (default DIR: fmu-out/report), variants against the full models: DIR/trimmed.md, then the stability matrix\n  figures are written as data (.csv, .json) and drawn into .png and .svg by .venv/bin/python -m friction_fmu.figures DIR";
+const USAGE: &str = "usage: friction-fmu [build [VARIANT.toml...]|run|report] [--out DIR] [--version]\n  (no command: run)\n  build   pack every model into DIR/<Model>.fmu and DIR/fmi3/<Model>.fmu (FMI 3.0) (default DIR: fmu-out) and the drive-coupled system into DIR/DriveFriction.ssp\n          or, given variants, each into DIR/<name>.fmu with only the variables it keeps, and into DIR/fmi3/<name>.fmu (for a DIR named variants: fmi3/variants beside it)\n  run     build, pack variants/*.toml into DIR/variants, then print the scenes' tables beside the papers' and write figures into DIR/figures\n  report  error against run time of every solver: DIR/<scene>.md and DIR/<scene>.png/.svg (default DIR: fmu-out/report), variants against the full models: DIR/trimmed.md, then the stability matrix\n  figures are written as data (.csv, .json) and drawn into .png and .svg by .venv/bin/python -m friction_fmu.figures DIR";
 
 /// The FMU libraries of every model and platform whose toolchain is installed, built from the
-/// source tree this program was built from.
+/// source tree this program was built from. What the platforms not built lack is kept for the
+/// end of the output ([`NOT_BUILT`]).
 fn libraries() -> Result<Vec<package::Library>, String> {
-    package::platforms::libraries(Path::new(env!("CARGO_MANIFEST_DIR")), variant::trimmable)
+    let built =
+        package::platforms::libraries(Path::new(env!("CARGO_MANIFEST_DIR")), variant::trimmable)?;
+    if let Some(report) = built.missing.report() {
+        let _ = NOT_BUILT.set(report);
+    }
+    Ok(built.libraries)
 }
 
-/// Packs variants; all are checked before any library is built or FMU written. `libraries`:
-/// those already built, if any.
+/// Which platforms [`libraries`] could not build and the command that adds them: the last
+/// thing the main command prints, where a user sees it.
+static NOT_BUILT: OnceLock<String> = OnceLock::new();
+
+/// Where the FMI 3.0 FMUs of the FMI 2.0 ones in `out` go: `out/fmi3`, except that a directory
+/// named `variants` (as `run` writes) pairs with `fmi3/variants` beside it, so that
+/// `fmu-out/variants` and `fmu-out/fmi3/variants` hold the same variants.
+fn fmi3_dir(out: &Path) -> PathBuf {
+    match (out.parent(), out.file_name()) {
+        (Some(parent), Some(name)) if name == "variants" => parent.join("fmi3").join(name),
+        _ => out.join("fmi3"),
+    }
+}
+
+/// Packs variants, for FMI 2.0 into `out` and FMI 3.0 into [`fmi3_dir`]; all are checked
+/// before any library is built or FMU written. `libraries`: those already built, if any.
 fn build_variants(
     files: &[PathBuf],
     out: &Path,
@@ -63,18 +88,29 @@ fn build_variants(
         }
     };
     for variant in &variants {
-        let path = package::pack_variant(variant, libraries, out)
-            .map_err(|e| format!("packing {}: {e}", variant.name))?;
-        println!("wrote {}", path.display());
+        for (standard, dir) in [
+            (Standard::Fmi2, out.to_path_buf()),
+            (Standard::Fmi3, fmi3_dir(out)),
+        ] {
+            let path = package::pack_variant_for(standard, variant, libraries, &dir)
+                .map_err(|e| format!("packing {}: {e}", variant.name))?;
+            println!("wrote {}", path.display());
+        }
     }
     Ok(())
 }
 
 fn build(out: &Path, libraries: &[package::Library]) -> Result<(), String> {
     for model in models::MODELS {
-        let path = package::pack(model.table.model_identifier, libraries, out)
-            .map_err(|e| format!("packing {}: {e}", model.table.model_identifier))?;
-        println!("wrote {}", path.display());
+        let id = model.table.model_identifier;
+        for (standard, dir) in [
+            (Standard::Fmi2, out.to_path_buf()),
+            (Standard::Fmi3, fmi3_dir(out)),
+        ] {
+            let path = package::pack_for(standard, id, libraries, &dir)
+                .map_err(|e| format!("packing {id}: {e}"))?;
+            println!("wrote {}", path.display());
+        }
     }
     let path = package::ssp::write(out).map_err(|e| format!("packing the system: {e}"))?;
     println!("wrote {}", path.display());
@@ -217,11 +253,15 @@ fn main() -> ExitCode {
         "report" => work_precision(&out.unwrap_or_else(|| PathBuf::from("fmu-out/report"))),
         _ => run(&out.unwrap_or_else(|| PathBuf::from("fmu-out"))),
     };
-    match result {
+    let code = match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
             eprintln!("friction-fmu: {message}");
             ExitCode::FAILURE
         }
+    };
+    if let Some(report) = NOT_BUILT.get() {
+        eprintln!("\nfriction-fmu: {report}");
     }
+    code
 }

@@ -12,6 +12,7 @@ pub static FMI2: Dialect = Dialect {
         Phase::StepFailed => "StepFailed",
         Phase::Terminated => "Terminated",
         Phase::Error => "Error",
+        Phase::IntermediateUpdate => "IntermediateUpdateMode",
     },
 };
 

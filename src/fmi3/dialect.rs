@@ -12,6 +12,7 @@ pub static FMI3: Dialect = Dialect {
         Phase::StepFailed => "StepDiscarded",
         Phase::Terminated => "Terminated",
         Phase::Error => "Error",
+        Phase::IntermediateUpdate => "IntermediateUpdateMode",
     },
 };
 

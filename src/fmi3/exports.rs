@@ -9,18 +9,19 @@
 use super::dialect::FMI3;
 use super::ffi::*;
 use super::logger::Logger;
+use super::updates;
 use crate::boundary::args::{slice, slice_mut, text};
 use crate::boundary::states;
 use crate::boundary::values::{self, access, is_integer, is_none, is_real, is_switch, Access};
 use crate::instance::calls::{Call, ValueType};
 use crate::instance::library::Binary;
-use crate::instance::log::{LogSink, Status as Outcome, CATEGORY_ERROR};
-use crate::instance::{handles, Instance};
+use crate::instance::log::{LogSink, CATEGORY_ERROR};
+use crate::instance::{handles, Instance, Stepped};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 /// Runs `body` on the live FMI 3.0 instance `c` names (see [`handles::with_instance`]).
-fn with_instance(c: FmiInstance, body: impl FnOnce(&mut Instance) -> Outcome) -> Status {
-    handles::with_instance(c as usize, &FMI3, body).into()
+fn with_instance(c: FmiInstance, body: impl FnOnce(&mut Instance) -> Status) -> Status {
+    handles::with_instance(c as usize, &FMI3, body)
 }
 
 /// Refuses what these FMUs do not offer, naming the function and why.
@@ -84,13 +85,13 @@ pub unsafe fn instantiate_co_simulation(
     _n_required_intermediate_variables: usize,
     environment: InstanceEnvironment,
     log_message: Option<LogMessageCallback>,
-    _intermediate_update: Option<IntermediateUpdateCallback>,
+    intermediate_update: Option<IntermediateUpdateCallback>,
 ) -> FmiInstance {
     catch_unwind(AssertUnwindSafe(|| {
         let logger = Logger::new(log_message, environment);
         let refuse = |message: String| {
             logger.log(
-                Outcome::Error,
+                Status::Error,
                 CATEGORY_ERROR,
                 &format!("fmi3InstantiateCoSimulation: {message}"),
             );
@@ -121,7 +122,11 @@ pub unsafe fn instantiate_co_simulation(
             instance = instance.for_variant(loaded);
         }
         // Ids start at 1, so no handle is NULL.
-        handles::register(instance) as FmiInstance
+        let handle = handles::register(instance);
+        if let Some(callback) = intermediate_update {
+            updates::register(handle, callback, environment);
+        }
+        handle as FmiInstance
     }))
     .unwrap_or(std::ptr::null_mut())
 }
@@ -135,7 +140,7 @@ unsafe fn refuse_instantiation(
 ) -> FmiInstance {
     let _ = catch_unwind(AssertUnwindSafe(|| {
         Logger::new(log_message, environment).log(
-            Outcome::Error,
+            Status::Error,
             CATEGORY_ERROR,
             &format!("{function}: {why}"),
         );
@@ -189,6 +194,7 @@ pub unsafe extern "C" fn fmi3InstantiateScheduledExecution(
 /// `c` from fmi3InstantiateCoSimulation; NULL, foreign or already freed handles are ignored.
 pub unsafe extern "C" fn fmi3FreeInstance(c: FmiInstance) {
     handles::free(c as usize, &FMI3);
+    updates::forget(c as usize);
 }
 
 /// Sets the experiment up and enters initialization, as FMI 2.0's two calls do.
@@ -212,7 +218,7 @@ pub unsafe extern "C" fn fmi3EnterInitializationMode(
             start_time,
             (stop_time_defined != FALSE).then_some(stop_time),
         );
-        if status != Outcome::Ok {
+        if status != Status::Ok {
             return status;
         }
         instance.enter_initialization_mode()
@@ -277,7 +283,7 @@ unsafe fn get_values<T>(
     if let Some(status) = check_count(c, access.call, nvr, n_values) {
         return status;
     }
-    values::get_values(c as usize, &FMI3, access, vr, nvr, value, convert).into()
+    values::get_values(c as usize, &FMI3, access, vr, nvr, value, convert)
 }
 
 /// The FMI 3.0 setter of one type.
@@ -293,7 +299,7 @@ unsafe fn set_values<T: Copy>(
     if let Some(status) = check_count(c, access.call, nvr, n_values) {
         return status;
     }
-    values::set_values(c as usize, &FMI3, access, vr, nvr, value, convert).into()
+    values::set_values(c as usize, &FMI3, access, vr, nvr, value, convert)
 }
 
 /// The getter and setter of one FMI 3.0 type: C names, the type's [`ValueType`], its C type,
@@ -523,19 +529,19 @@ pub unsafe extern "C" fn fmi3GetVariableDependencies(
 /// # Safety
 /// `state` points to an fmi3FMUState.
 pub unsafe extern "C" fn fmi3GetFMUState(c: FmiInstance, state: *mut FmuState) -> Status {
-    states::get(c as usize, &FMI3, state).into()
+    states::get(c as usize, &FMI3, state)
 }
 
 /// # Safety
 /// `state` from fmi3GetFMUState.
 pub unsafe extern "C" fn fmi3SetFMUState(c: FmiInstance, state: FmuState) -> Status {
-    states::set(c as usize, &FMI3, state).into()
+    states::set(c as usize, &FMI3, state)
 }
 
 /// # Safety
 /// `state` points to an fmi3FMUState from this instance.
 pub unsafe extern "C" fn fmi3FreeFMUState(c: FmiInstance, state: *mut FmuState) -> Status {
-    states::free(c as usize, &FMI3, state).into()
+    states::free(c as usize, &FMI3, state)
 }
 
 /// # Safety
@@ -545,7 +551,7 @@ pub unsafe extern "C" fn fmi3SerializedFMUStateSize(
     state: FmuState,
     size: *mut usize,
 ) -> Status {
-    states::serialized_size(c as usize, &FMI3, state, size).into()
+    states::serialized_size(c as usize, &FMI3, state, size)
 }
 
 /// # Safety
@@ -556,7 +562,7 @@ pub unsafe extern "C" fn fmi3SerializeFMUState(
     bytes: *mut Byte,
     size: usize,
 ) -> Status {
-    states::serialize(c as usize, &FMI3, state, bytes, size).into()
+    states::serialize(c as usize, &FMI3, state, bytes, size)
 }
 
 /// # Safety
@@ -567,7 +573,7 @@ pub unsafe extern "C" fn fmi3DeserializeFMUState(
     size: usize,
     state: *mut FmuState,
 ) -> Status {
-    states::deserialize(c as usize, &FMI3, bytes, size, state).into()
+    states::deserialize(c as usize, &FMI3, bytes, size, state)
 }
 
 /// # Safety
@@ -866,7 +872,9 @@ pub unsafe extern "C" fn fmi3GetOutputDerivatives(
 }
 
 /// Steps synchronously: never an event, never an early return; lastSuccessfulTime is where
-/// the step ended, or, on fmi3Discard, the time the instance was rolled back to.
+/// the step ended, or, on fmi3Discard, the time the instance was rolled back to. An importer that
+/// gave an intermediate-update callback is called back at the end of each internal step inside
+/// the step, where it may read outputs and set inputs.
 ///
 /// # Safety
 /// The four output pointers point to their types.
@@ -881,28 +889,81 @@ pub unsafe extern "C" fn fmi3DoStep(
     early_return: *mut Boolean,
     last_successful_time: *mut f64,
 ) -> Status {
-    with_instance(c, |instance| {
+    let update = updates::of(c as usize);
+    let status = with_instance(c, |instance| {
         instance.trace(|| {
             format!("fmi3DoStep(t = {current_communication_point}, h = {communication_step_size})")
         });
+        let outputs = [event_handling_needed, terminate_simulation, early_return];
+        if outputs.iter().any(|p| p.is_null()) || last_successful_time.is_null() {
+            return instance.null_argument(
+                Call::DoStep,
+                "eventHandlingNeeded, terminateSimulation, earlyReturn or lastSuccessfulTime",
+            );
+        }
+        if update.is_some() {
+            instance.begin_step_with_updates(current_communication_point, communication_step_size)
+        } else {
+            instance.do_step(current_communication_point, communication_step_size)
+        }
+    });
+    let status = match update {
+        Some((callback, environment)) if status == Status::Ok => {
+            internal_steps(c, callback, environment)
+        }
+        _ => status,
+    };
+    // Written where the pointers were checked: the instance exists and took the call.
+    let _ = with_instance(c, |instance| {
         let (Some(event), Some(terminate), Some(early), Some(last)) = (
             event_handling_needed.as_mut(),
             terminate_simulation.as_mut(),
             early_return.as_mut(),
             last_successful_time.as_mut(),
         ) else {
-            return instance.null_argument(
-                Call::DoStep,
-                "eventHandlingNeeded, terminateSimulation, earlyReturn or lastSuccessfulTime",
-            );
+            return Status::Error;
         };
-        let status = instance.do_step(current_communication_point, communication_step_size);
         *event = FALSE;
         *terminate = FALSE;
         *early = FALSE;
         *last = instance.last_successful_time();
-        status
-    })
+        Status::Ok
+    });
+    status
+}
+
+/// Takes the step begun on `c` one internal step at a time, calling `callback` between them
+/// with no borrow of the instance held; returns the step's status.
+unsafe fn internal_steps(
+    c: FmiInstance,
+    callback: IntermediateUpdateCallback,
+    environment: InstanceEnvironment,
+) -> Status {
+    loop {
+        let mut stepped = Stepped::Done(Status::Error);
+        with_instance(c, |instance| {
+            stepped = instance.next_internal_step();
+            Status::Ok
+        });
+        match stepped {
+            Stepped::At(time) => {
+                let (mut early, mut early_time) = (FALSE, time);
+                // Inputs may be set, outputs read; the internal step is finished; this FMU never
+                // returns early.
+                callback(
+                    environment,
+                    time,
+                    TRUE,
+                    TRUE,
+                    TRUE,
+                    FALSE,
+                    &mut early,
+                    &mut early_time,
+                );
+            }
+            Stepped::Done(status) => return status,
+        }
+    }
 }
 
 /// # Safety

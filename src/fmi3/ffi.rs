@@ -17,29 +17,8 @@ pub type Clock = u8;
 pub const TRUE: Boolean = 1;
 pub const FALSE: Boolean = 0;
 
-/// fmi3Status
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-pub enum Status {
-    Ok = 0,
-    Warning = 1,
-    Discard = 2,
-    Error = 3,
-    Fatal = 4,
-}
-
-impl From<crate::instance::log::Status> for Status {
-    fn from(status: crate::instance::log::Status) -> Status {
-        use crate::instance::log::Status as S;
-        match status {
-            S::Ok => Status::Ok,
-            S::Warning => Status::Warning,
-            S::Discard => Status::Discard,
-            S::Error => Status::Error,
-            S::Fatal => Status::Fatal,
-        }
-    }
-}
+/// fmi3Status: the instance's own status, whose numbers are FMI 3.0's.
+pub use crate::instance::log::Status;
 
 /// fmi3DependencyKind and fmi3IntervalQualifier, as plain C enums.
 pub type DependencyKind = std::ffi::c_int;

@@ -34,7 +34,7 @@ impl LogSink for Logger {
             let (category, message): (FmiString, FmiString) = (category.as_ptr(), message.as_ptr());
             // SAFETY: the importer promised a valid callback for the instance's lifetime; every
             // pointer passed lives until it returns.
-            unsafe { callback(self.environment, status.into(), category, message) };
+            unsafe { callback(self.environment, status, category, message) };
         }
     }
 }

@@ -13,3 +13,4 @@ pub mod exports;
 pub mod ffi;
 #[allow(unsafe_code)]
 pub mod logger;
+pub mod updates;

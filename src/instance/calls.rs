@@ -67,18 +67,34 @@ pub struct Dialect {
     pub phase: fn(Phase) -> &'static str,
 }
 
-/// Every phase: the instance's own housekeeping and its FMU states are allowed in any.
-const ANY: &[Phase] = &Phase::ALL;
-/// Where values can be read (the standards also allow it after an error, for debugging).
-const READABLE: &[Phase] = &[
+/// Every phase but a step's intermediate update: the instance's own housekeeping and its FMU
+/// states are allowed in any.
+const ANY: &[Phase] = &[
+    Instantiated,
     InitializationMode,
     StepComplete,
     StepFailed,
     Terminated,
     Error,
 ];
-/// Where inputs and parameters can be set (which of them, the variability decides).
-const WRITABLE: &[Phase] = &[Instantiated, InitializationMode, StepComplete];
+/// Where values can be read (the standards also allow it after an error, for debugging, and
+/// between a step's internal steps).
+const READABLE: &[Phase] = &[
+    InitializationMode,
+    StepComplete,
+    StepFailed,
+    Terminated,
+    Error,
+    IntermediateUpdate,
+];
+/// Where inputs and parameters can be set (which of them, the variability and the phase
+/// decide: between a step's internal steps, inputs alone).
+const WRITABLE: &[Phase] = &[
+    Instantiated,
+    InitializationMode,
+    StepComplete,
+    IntermediateUpdate,
+];
 /// Where a step's outcome can be asked for.
 const AFTER_A_STEP: &[Phase] = &[StepComplete, StepFailed, Terminated];
 
@@ -91,7 +107,8 @@ impl Call {
             Call::ExitInitializationMode => &[InitializationMode],
             Call::Terminate => &[StepComplete, StepFailed, Error],
             Call::Get(_) | Call::GetDirectionalDerivative => READABLE,
-            Call::Set(_) | Call::SetRealInputDerivatives => WRITABLE,
+            Call::Set(_) => WRITABLE,
+            Call::SetRealInputDerivatives => &[Instantiated, InitializationMode, StepComplete],
             Call::GetFMUstate
             | Call::SetFMUstate
             | Call::FreeFMUstate

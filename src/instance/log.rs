@@ -1,15 +1,16 @@
 //! What an instance says, and to whom: the statuses both standards share, the log categories,
 //! and the sink each standard's boundary gives an instance (its logger callback).
 
-/// A call's outcome, as FMI 2.0 and FMI 3.0 both number it (FMI 2.0's fmi2Pending never
-/// occurs: steps are synchronous).
+/// A call's outcome, as FMI 2.0 and FMI 3.0 both number it: FMI 3.0's fmi3Status itself (FMI
+/// 2.0's adds fmi2Pending, which never occurs here: steps are synchronous).
+#[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Status {
-    Ok,
-    Warning,
-    Discard,
-    Error,
-    Fatal,
+    Ok = 0,
+    Warning = 1,
+    Discard = 2,
+    Error = 3,
+    Fatal = 4,
 }
 
 pub const CATEGORY_ERROR: &str = "logStatusError";

@@ -16,6 +16,7 @@ pub mod phase;
 pub mod snapshot;
 mod states;
 mod step;
+pub use step::Stepped;
 mod values;
 
 use crate::models::{Model, Scope, Simulation};
@@ -74,6 +75,9 @@ pub struct Instance {
     pending_derivatives: Vec<(u32, f64)>,
     /// Inputs set while their switch says they are not read.
     unread_inputs: UnreadInputs,
+    /// The communication step under way: while its internal steps are taken one at a time, and
+    /// until a step has ended.
+    step: Option<step::StepUnderWay>,
     /// Whether this run has said that the clock bounds the readings' accuracy.
     clock_warned: bool,
     /// Whether the outputs in `values` are those of the current state and inputs. Outputs are
@@ -131,6 +135,7 @@ impl Instance {
             snapshots: Vec::new(),
             rollback: Vec::with_capacity(ROLLBACK_CAPACITY),
             unread_inputs: UnreadInputs::default(),
+            step: None,
             clock_warned: false,
             outputs_current: false,
             positions: positions(model.table),
@@ -184,6 +189,17 @@ impl Instance {
 
     pub fn warning(&self, message: &str) {
         self.logger.log(Status::Warning, CATEGORY_WARNING, message);
+    }
+
+    /// Logs each of `warnings` that is there, after the function's name: a warning status
+    /// where there is one, OK where there is none.
+    fn warn_all(&self, function: &str, warnings: &[Option<String>]) -> Status {
+        let mut status = Status::Ok;
+        for message in warnings.iter().flatten() {
+            self.warning(&format!("{function}: {message}"));
+            status = Status::Warning;
+        }
+        status
     }
 
     pub fn trace(&self, message: impl FnOnce() -> String) {
@@ -298,14 +314,7 @@ impl Instance {
                     found,
                     self.unread_inputs.start(self.model.table, &self.values),
                 ];
-                for message in warnings.iter().flatten() {
-                    self.warning(&format!("{function}: {message}"));
-                }
-                if warnings.iter().any(Option::is_some) {
-                    Status::Warning
-                } else {
-                    Status::Ok
-                }
+                self.warn_all(function, &warnings)
             }
             Err(message) => self.error(&format!("{function}: {message}")),
         }
@@ -333,6 +342,7 @@ impl Instance {
         self.last_successful_time = 0.0;
         self.pending_derivatives.clear();
         self.unread_inputs.clear();
+        self.step = None;
         self.clock_warned = false;
         self.outputs_current = false;
         Status::Ok

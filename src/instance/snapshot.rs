@@ -250,8 +250,10 @@ impl Snapshot {
             it.next()
                 .ok_or_else(|| corrupt(&format!("it ends before {what}")))
         };
-        let phase =
-            Phase::from_code(next("the state")?).ok_or_else(|| corrupt("unknown state code"))?;
+        // No state is taken between a step's internal steps.
+        let phase = Phase::from_code(next("the state")?)
+            .filter(|&phase| phase != Phase::IntermediateUpdate)
+            .ok_or_else(|| corrupt("unknown state code"))?;
         let start_time = next("the start time")?;
         let stop = next("the stop time")?;
         let time = next("the time")?;

@@ -133,6 +133,12 @@ impl Instance {
                 Ok(var) => var,
                 Err(status) => return status,
             };
+            if self.phase == IntermediateUpdate && var.causality != Causality::Input {
+                return self.error(&format!(
+                    "{function}: {} is not an input: between a step's internal steps only inputs can be set",
+                    var.name
+                ));
+            }
             let writable = match var.causality {
                 Causality::Input => true,
                 Causality::Parameter => {

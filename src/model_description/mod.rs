@@ -1,11 +1,16 @@
-//! The one modelDescription.xml writer: full models (written by `build.rs`, which includes this
-//! module with `#[path]`) and the trimmed interfaces of variants (written by the library when
-//! it packs one, and again at fmi2Instantiate to check its GUID) come from the same code.
+//! The one modelDescription.xml writer, for FMI 2.0 and FMI 3.0 (`fmi3`) from the same
+//! [`Description`]: full models (written by `build.rs`, which includes this module with
+//! `#[path]`) and the trimmed interfaces of variants (written by the library when it packs one,
+//! and again at instantiation to check its GUID) come from the same code.
 //!
 //! Like `src/variables`, it depends only on that module (as `crate::interface`), serde and
 //! quick-xml, so it compiles the same in both places.
 
+mod fmi3;
+mod fmi3_xml;
 mod xml;
+
+pub use fmi3::{TIME_NAME, TIME_VALUE_REFERENCE};
 
 use crate::variables::variable::{Causality, EnumType, Kind, ModelTable, Variable, UNITS};
 use xml::*;
@@ -194,6 +199,45 @@ impl<'a> Description<'a> {
         }
     }
 
+    /// The units `listed` keeps, in [`UNITS`] order.
+    fn unit_definitions(&self, listed: &dyn Fn(&str) -> bool) -> UnitDefinitions<'static> {
+        UnitDefinitions {
+            units: UNITS
+                .iter()
+                .filter(|u| listed(u.name))
+                .map(|u| UnitXml {
+                    name: u.name,
+                    base: BaseUnit {
+                        kg: u.kg,
+                        m: u.m,
+                        s: u.s,
+                        a: u.a,
+                        rad: u.rad,
+                        factor: (u.name == "%").then_some(0.01),
+                    },
+                })
+                .collect(),
+        }
+    }
+
+    fn log_categories(&self) -> LogCategories<'static> {
+        LogCategories {
+            categories: crate::variables::variable::LOG_CATEGORIES
+                .iter()
+                .map(|&(name, description)| Category { name, description })
+                .collect(),
+        }
+    }
+
+    fn default_experiment(&self) -> DefaultExperimentXml {
+        DefaultExperimentXml {
+            start_time: self.experiment.start,
+            stop_time: self.experiment.stop,
+            tolerance: self.experiment.tolerance,
+            step_size: self.experiment.step,
+        }
+    }
+
     fn model_description<'b>(&'b self, guid: &'b str) -> ModelDescription<'b> {
         ModelDescription {
             fmi_version: "2.0",
@@ -216,23 +260,7 @@ impl<'a> Description<'a> {
                 serialize_state: true,
                 directional_derivative: false,
             },
-            units: UnitDefinitions {
-                units: UNITS
-                    .iter()
-                    .filter(|u| self.uses_unit(u.name))
-                    .map(|u| UnitXml {
-                        name: u.name,
-                        base: BaseUnit {
-                            kg: u.kg,
-                            m: u.m,
-                            s: u.s,
-                            a: u.a,
-                            rad: u.rad,
-                            factor: (u.name == "%").then_some(0.01),
-                        },
-                    })
-                    .collect(),
-            },
+            units: self.unit_definitions(&|name| self.uses_unit(name)),
             types: TypeDefinitions {
                 types: self
                     .enum_types
@@ -248,18 +276,8 @@ impl<'a> Description<'a> {
                     })
                     .collect(),
             },
-            log_categories: LogCategories {
-                categories: crate::variables::variable::LOG_CATEGORIES
-                    .iter()
-                    .map(|&(name, description)| Category { name, description })
-                    .collect(),
-            },
-            default_experiment: DefaultExperimentXml {
-                start_time: self.experiment.start,
-                stop_time: self.experiment.stop,
-                tolerance: self.experiment.tolerance,
-                step_size: self.experiment.step,
-            },
+            log_categories: self.log_categories(),
+            default_experiment: self.default_experiment(),
             variables: ModelVariables {
                 variables: self
                     .variables
@@ -293,33 +311,46 @@ pub fn guid_of(text: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::Description;
+    use crate::package::{committed_xml_path, model_description_for, Standard};
     use crate::variables::variable::Variable;
 
     /// Oracle: the XML and GUID `build.rs` wrote into OUT_DIR: the library's writer, which also
-    /// writes variants, gives the same bytes for a whole table.
+    /// writes variants, gives the same bytes for a whole table, in both standards, and FMI 3.0's
+    /// instantiationToken is FMI 2.0's GUID.
     #[test]
     fn library_writes_the_full_models_as_the_build_script_did() {
         for table in crate::models::MODELS.iter().map(|m| m.table) {
             let variables: Vec<&Variable> = table.variables.iter().collect();
-            let (guid, xml) = Description::full(table, &variables).write();
+            let description = Description::full(table, &variables);
+            let (guid, xml) = description.write();
             let id = table.model_identifier;
             assert_eq!(Some(xml.as_str()), crate::package::model_description(id));
             assert_eq!(Some(guid.as_str()), crate::fmi2::guid(id));
+            let xml3 = description.write_fmi3(&guid);
+            assert_eq!(
+                Some(xml3.as_str()),
+                model_description_for(Standard::Fmi3, id)
+            );
+            assert!(xml3.contains(&format!(" instantiationToken=\"{guid}\" ")));
         }
     }
 
-    /// The committed modelDescription/ is what this build packs: an interface changed without
-    /// `friction-fmu build` (which refreshes the copies) fails here, naming the file.
+    /// The committed modelDescription/ (FMI 2.0) and modelDescription/fmi3/ are what this build
+    /// packs: an interface changed without `friction-fmu build` (which refreshes the copies)
+    /// fails here, naming the file.
     #[test]
     fn committed_model_descriptions_are_current() {
         for table in crate::models::MODELS.iter().map(|m| m.table) {
             let id = table.model_identifier;
-            let path = format!("{}/{id}.xml", crate::package::COMMITTED_XML_DIR);
-            let committed = std::fs::read_to_string(&path).unwrap_or_default();
-            assert!(
-                Some(committed.as_str()) == crate::package::model_description(id),
-                "{path} is not this build's modelDescription.xml: run `cargo run --release -- build` and commit it"
-            );
+            for standard in [Standard::Fmi2, Standard::Fmi3] {
+                let path = committed_xml_path(standard, id);
+                let committed = std::fs::read_to_string(&path).unwrap_or_default();
+                assert!(
+                    Some(committed.as_str()) == model_description_for(standard, id),
+                    "{} is not this build's modelDescription.xml: run `cargo run --release -- build` and commit it",
+                    path.display()
+                );
+            }
         }
     }
 }

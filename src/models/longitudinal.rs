@@ -888,6 +888,10 @@ impl Simulation for Longitudinal {
         ))
     }
 
+    fn next_internal_step(&self) -> Option<f64> {
+        Some(self.solver.step_hint()).filter(|&h| h > 0.0)
+    }
+
     /// The inputs' values and the derivatives set for the coming step (FMI 2.0, 2.1.8: they
     /// are state), then, with the normal force an input, its value, rate and mean.
     fn save_into(&self, out: &mut Vec<f64>) {

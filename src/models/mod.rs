@@ -73,6 +73,13 @@ pub trait Simulation: Send {
         let _ = self.set_input_derivative(value_reference, 0.0);
     }
 
+    /// The step the simulation's solver takes next, for an importer that takes intermediate
+    /// updates at the internal steps; None where the simulation has no internal steps of its
+    /// own to offer (a step is then one internal step). The default: none.
+    fn next_internal_step(&self) -> Option<f64> {
+        None
+    }
+
     /// A warning the build or the last step left for the user (logged, the call itself having
     /// succeeded): once, then None. The default: none.
     fn take_warning(&mut self) -> Option<String> {

@@ -915,6 +915,13 @@ impl Simulation for Oscillator {
             .then_some((self.amplitude.period, self.reading_tolerance))
     }
 
+    fn next_internal_step(&self) -> Option<f64> {
+        match &self.core {
+            Core::Regularized(_, solver) => Some(solver.step_hint()).filter(|&h| h > 0.0),
+            Core::Exact(_) => None,
+        }
+    }
+
     fn save_into(&self, out: &mut Vec<f64>) {
         let step_hint = match &self.core {
             Core::Regularized(_, solver) => solver.step_hint(),

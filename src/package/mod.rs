@@ -1,11 +1,15 @@
 //! Packs an FMU: modelDescription.xml, the shared library of each platform under the model's
 //! name, and a documentation page, zipped as `<out_dir>/<modelIdentifier>.fmu`; a variant's
-//! FMU also carries the file in resources/.
+//! FMU also carries the file in resources/. The FMI 3.0 FMU of a model or variant carries the
+//! same library, under FMI 3.0's platform names, beside its FMI 3.0 modelDescription.xml.
 
 mod documentation;
 pub mod osp;
 pub mod platforms;
 pub mod ssp;
+pub mod standard;
+
+pub use standard::Standard;
 
 use crate::variant::{self, Variant};
 use std::fs::File;
@@ -14,6 +18,7 @@ use std::path::{Path, PathBuf};
 use zip::write::SimpleFileOptions;
 
 include!(concat!(env!("OUT_DIR"), "/model_descriptions.rs"));
+include!(concat!(env!("OUT_DIR"), "/model_descriptions_fmi3.rs"));
 
 /// The platform folder of binaries/ for the machine this library was built for; None where
 /// FMI 2.0 names none (an aarch64 or riscv build is no linux64 library).
@@ -42,17 +47,31 @@ pub(crate) fn library_extension(platform: &str) -> &'static str {
     }
 }
 
-/// A compiled library: the platform folder it goes to, and the FMUs it is for (a model's full
-/// FMU, or its variant FMUs).
+/// A compiled library: the platform it is for, and the FMUs it is for (a model's full FMU, or
+/// its variant FMUs).
 pub struct Library {
+    /// FMI 2.0's binaries/ folder (linux64, win64), or for a platform FMI 2.0 names none,
+    /// FMI 3.0's ([`standard::AARCH64_LINUX`]); [`Standard::binaries_folder`] names each
+    /// standard's folder.
     pub platform: &'static str,
     pub model: &'static str,
     pub variant: bool,
     pub path: PathBuf,
 }
 
+/// A model's FMI 2.0 modelDescription.xml.
 pub fn model_description(model_identifier: &str) -> Option<&'static str> {
-    XMLS.iter()
+    model_description_for(Standard::Fmi2, model_identifier)
+}
+
+/// A model's modelDescription.xml for `standard`; the FMI 3.0 one's instantiationToken is the
+/// FMI 2.0 one's GUID.
+pub fn model_description_for(standard: Standard, model_identifier: &str) -> Option<&'static str> {
+    let xmls = match standard {
+        Standard::Fmi2 => XMLS,
+        Standard::Fmi3 => FMI3_XMLS,
+    };
+    xmls.iter()
         .find(|(id, _)| *id == model_identifier)
         .map(|(_, xml)| *xml)
 }
@@ -61,19 +80,34 @@ pub fn model_description(model_identifier: &str) -> Option<&'static str> {
 /// changes show in diffs).
 pub const COMMITTED_XML_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/modelDescription");
 
-/// Refreshes the committed copies in [`COMMITTED_XML_DIR`] when run from the source tree (the
-/// directory exists); returns the files it rewrote.
+/// The committed copies of the FMI 3.0 ones, in `fmi3/` under [`COMMITTED_XML_DIR`].
+pub const COMMITTED_FMI3_XML_DIR: &str =
+    concat!(env!("CARGO_MANIFEST_DIR"), "/modelDescription/fmi3");
+
+/// The committed copy of a model's modelDescription.xml for `standard`.
+pub fn committed_xml_path(standard: Standard, model_identifier: &str) -> PathBuf {
+    let dir = match standard {
+        Standard::Fmi2 => COMMITTED_XML_DIR,
+        Standard::Fmi3 => COMMITTED_FMI3_XML_DIR,
+    };
+    Path::new(dir).join(format!("{model_identifier}.xml"))
+}
+
+/// Refreshes the committed copies of both standards when run from the source tree
+/// ([`COMMITTED_XML_DIR`] exists); returns the files it rewrote.
 pub fn refresh_committed_xml() -> io::Result<Vec<PathBuf>> {
-    let dir = Path::new(COMMITTED_XML_DIR);
     let mut written = Vec::new();
-    if !dir.is_dir() {
+    if !Path::new(COMMITTED_XML_DIR).is_dir() {
         return Ok(written);
     }
-    for (id, xml) in XMLS {
-        let path = dir.join(format!("{id}.xml"));
-        if std::fs::read_to_string(&path).ok().as_deref() != Some(*xml) {
-            std::fs::write(&path, xml)?;
-            written.push(path);
+    std::fs::create_dir_all(COMMITTED_FMI3_XML_DIR)?;
+    for (standard, xmls) in [(Standard::Fmi2, XMLS), (Standard::Fmi3, FMI3_XMLS)] {
+        for (id, xml) in xmls {
+            let path = committed_xml_path(standard, id);
+            if std::fs::read_to_string(&path).ok().as_deref() != Some(*xml) {
+                std::fs::write(&path, xml)?;
+                written.push(path);
+            }
         }
     }
     Ok(written)
@@ -81,6 +115,7 @@ pub fn refresh_committed_xml() -> io::Result<Vec<PathBuf>> {
 
 /// What one FMU holds besides the library.
 struct Contents<'a> {
+    standard: Standard,
     model_identifier: &'a str,
     xml: &'a str,
     documentation: &'a str,
@@ -89,16 +124,17 @@ struct Contents<'a> {
 }
 
 /// Writes the FMU with the libraries of `model` (its variant FMUs' when `variant`), one per
-/// platform.
+/// platform the FMU's standard names.
 fn write_fmu(
     contents: &Contents,
     libraries: &[Library],
     (model, variant): (&str, bool),
     out_dir: &Path,
 ) -> io::Result<PathBuf> {
-    let libraries: Vec<&Library> = libraries
+    let libraries: Vec<(&str, &Library)> = libraries
         .iter()
         .filter(|l| l.model == model && l.variant == variant)
+        .filter_map(|l| Some((contents.standard.binaries_folder(l.platform)?, l)))
         .collect();
     if libraries.is_empty() {
         return Err(io::Error::new(
@@ -108,7 +144,7 @@ fn write_fmu(
     }
     let binaries = libraries
         .iter()
-        .map(|library| {
+        .map(|(_, library)| {
             std::fs::read(&library.path).map_err(|e| {
                 io::Error::new(
                     e.kind(),
@@ -127,15 +163,16 @@ fn write_fmu(
     let options = SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
     zip.start_file("modelDescription.xml", options)?;
     zip.write_all(contents.xml.as_bytes())?;
-    for (library, binary) in libraries.iter().zip(&binaries) {
-        let platform = library.platform;
-        let binary_path = format!("binaries/{platform}/{id}.{}", library_extension(platform));
+    for ((folder, library), binary) in libraries.iter().zip(&binaries) {
+        let extension = library_extension(library.platform);
+        let binary_path = format!("binaries/{folder}/{id}.{extension}");
         zip.start_file(binary_path, options.unix_permissions(0o755))?;
         zip.write_all(binary)?;
     }
     zip.start_file("documentation/index.html", options)?;
     zip.write_all(contents.documentation.as_bytes())?;
-    // FMI 2.0, 2.3: the licenses of the FMU's code, where importers look for them.
+    // FMI 2.0, 2.3 (and FMI 3.0, 2.5.1): the licenses of the FMU's code, where importers look
+    // for them.
     for (name, text) in LICENSES {
         zip.start_file(format!("documentation/licenses/{name}"), options)?;
         zip.write_all(text.as_bytes())?;
@@ -154,14 +191,27 @@ const LICENSES: [(&str, &str); 2] = [
     ("LICENSE-APACHE.txt", include_str!("../../LICENSE-APACHE")),
 ];
 
-/// Writes `<out_dir>/<model_identifier>.fmu` from the compiled `library` and returns its path.
+/// Writes `<out_dir>/<model_identifier>.fmu` (FMI 2.0) from the compiled `libraries` and
+/// returns its path.
 pub fn pack(model_identifier: &str, libraries: &[Library], out_dir: &Path) -> io::Result<PathBuf> {
+    pack_for(Standard::Fmi2, model_identifier, libraries, out_dir)
+}
+
+/// Writes `<out_dir>/<model_identifier>.fmu` for `standard` from the compiled `libraries` and
+/// returns its path.
+pub fn pack_for(
+    standard: Standard,
+    model_identifier: &str,
+    libraries: &[Library],
+    out_dir: &Path,
+) -> io::Result<PathBuf> {
     let not_found = |what: String| io::Error::new(io::ErrorKind::NotFound, what);
-    let xml = model_description(model_identifier)
+    let xml = model_description_for(standard, model_identifier)
         .ok_or_else(|| not_found(format!("no model {model_identifier} in this build")))?;
     let model = crate::models::model(model_identifier)
         .ok_or_else(|| not_found(format!("no simulation for {model_identifier}")))?;
     let contents = Contents {
+        standard,
         model_identifier,
         xml,
         documentation: &documentation::page(model),
@@ -170,16 +220,30 @@ pub fn pack(model_identifier: &str, libraries: &[Library], out_dir: &Path) -> io
     write_fmu(&contents, libraries, (model_identifier, false), out_dir)
 }
 
-/// Writes `<out_dir>/<name>.fmu` for a variant: its trimmed modelDescription.xml, the same
-/// library under the simulation's name, its documentation page, and the file itself as
-/// resources/variant.toml, where the library finds it again at fmi2Instantiate.
+/// Writes `<out_dir>/<name>.fmu` (FMI 2.0) for a variant: its trimmed modelDescription.xml, the
+/// same library under the simulation's name, its documentation page, and the file itself as
+/// resources/variant.toml, where the library finds it again at instantiation.
 pub fn pack_variant(
     variant: &Variant,
     libraries: &[Library],
     out_dir: &Path,
 ) -> io::Result<PathBuf> {
-    let (_, xml) = variant.model_description();
+    pack_variant_for(Standard::Fmi2, variant, libraries, out_dir)
+}
+
+/// Writes a variant's FMU for `standard`, as [`pack_variant`] does for FMI 2.0.
+pub fn pack_variant_for(
+    standard: Standard,
+    variant: &Variant,
+    libraries: &[Library],
+    out_dir: &Path,
+) -> io::Result<PathBuf> {
+    let xml = match standard {
+        Standard::Fmi2 => variant.model_description().1,
+        Standard::Fmi3 => variant.model_description_fmi3().1,
+    };
     let contents = Contents {
+        standard,
         model_identifier: &variant.name,
         xml: &xml,
         documentation: &documentation::variant_page(variant),

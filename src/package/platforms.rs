@@ -8,7 +8,13 @@
 //! - win64: this machine's toolchain with its `x86_64-pc-windows-gnu` standard library (`rustup
 //!   target add x86_64-pc-windows-gnu`), or else Debian's `rustc-web`, `cargo-web` and
 //!   `rust-web-src`, which build that standard library from source; `mingw-w64` links, with
-//!   link-time optimisation; without either, one line saying the FMUs carry linux64 only.
+//!   link-time optimisation;
+//! - aarch64-linux (FMI 3.0 only: FMI 2.0 names no such platform): `cargo-zigbuild` again, for
+//!   glibc 2.17, with the `aarch64-unknown-linux-gnu` standard library (`rustup target add
+//!   aarch64-unknown-linux-gnu`).
+//!
+//! What cannot be built is left out, and [`Built::missing`] says which platforms and the one
+//! command that adds them, for the main command to print at the end of its output.
 //!
 //! On a machine that is not x86_64 Linux, this machine's platform alone, with its own cargo.
 
@@ -19,6 +25,9 @@ use std::process::Command;
 
 const LINUX_TARGET: &str = "x86_64-unknown-linux-gnu";
 const WINDOWS_TARGET: &str = "x86_64-pc-windows-gnu";
+const AARCH64_TARGET: &str = "aarch64-unknown-linux-gnu";
+/// The oldest glibc whose symbol versions the Linux libraries link against.
+const GLIBC: &str = "2.17";
 const MINGW_GCC: &str = "x86_64-w64-mingw32-gcc";
 /// Debian's Rust toolchain (rustc-web, cargo-web) and the standard library's source.
 const DEBIAN_CARGO: &str = "/usr/bin/cargo";
@@ -35,18 +44,70 @@ const PROFILE: &str = "fmu";
 enum Toolchain {
     /// This machine's cargo, for its own platform.
     Host,
-    /// cargo-zigbuild at this path, for linux64 with glibc 2.17.
-    Zig(PathBuf),
+    /// cargo-zigbuild at this path, for a Linux target with glibc 2.17.
+    Zig(PathBuf, &'static str),
     /// This machine's cargo with its installed Windows standard library, for win64.
     Windows,
     /// Debian's cargo with -Zbuild-std, for win64.
     DebianWindows,
 }
 
+/// The libraries built, and what could not be.
+pub struct Built {
+    pub libraries: Vec<Library>,
+    pub missing: Missing,
+}
+
+/// Platforms left out (or built short of what they should be), and what adds them.
+#[derive(Debug, Default, PartialEq)]
+pub struct Missing {
+    /// One line per platform: its name and why.
+    pub platforms: Vec<String>,
+    /// rustup targets to add.
+    targets: Vec<&'static str>,
+    /// Debian packages to install.
+    apt: Vec<&'static str>,
+    /// Whether cargo-zigbuild and ziglang are to be installed into .venv.
+    zig: bool,
+}
+
+impl Missing {
+    /// The one shell command that adds every missing platform; None when nothing is missing.
+    pub fn command(&self) -> Option<String> {
+        let mut parts = Vec::new();
+        if !self.targets.is_empty() {
+            parts.push(format!("rustup target add {}", self.targets.join(" ")));
+        }
+        if !self.apt.is_empty() {
+            parts.push(format!("sudo apt-get install -y {}", self.apt.join(" ")));
+        }
+        if self.zig {
+            parts.push(
+                "(test -d .venv || python3 -m venv .venv) && .venv/bin/pip install cargo-zigbuild ziglang"
+                    .to_string(),
+            );
+        }
+        (!parts.is_empty()).then(|| parts.join(" && "))
+    }
+
+    /// What the main command prints last: nothing when every platform was built.
+    pub fn report(&self) -> Option<String> {
+        let command = self.command()?;
+        let mut text = String::from("not built, so the FMUs go without them:\n");
+        for line in &self.platforms {
+            text.push_str(&format!("  {line}\n"));
+        }
+        text.push_str(&format!(
+            "to add them, run from the source tree, then build again:\n  {command}"
+        ));
+        Some(text)
+    }
+}
+
 /// Builds every model's libraries (full, and variant where `trimmable` says a variant can trim
-/// the model) for every platform this machine can build, and returns them. `root` is the
-/// source tree.
-pub fn libraries(root: &Path, trimmable: impl Fn(&str) -> bool) -> Result<Vec<Library>, String> {
+/// the model) for every platform this machine can build, and returns them with what could not
+/// be built. `root` is the source tree.
+pub fn libraries(root: &Path, trimmable: impl Fn(&str) -> bool) -> Result<Built, String> {
     let host_platform = super::platform().ok_or_else(|| {
         format!(
             "no FMI 2.0 platform for {}/{}: expected x86_64 or x86 Linux or Windows, or macOS",
@@ -55,13 +116,18 @@ pub fn libraries(root: &Path, trimmable: impl Fn(&str) -> bool) -> Result<Vec<Li
         )
     })?;
     let mut toolchains = Vec::new();
+    let mut missing = Missing::default();
+    let zigbuild = find_zigbuild(root);
     if host_platform == "linux64" {
-        match find_zigbuild(root) {
-            Some(zigbuild) => toolchains.push(("linux64", Toolchain::Zig(zigbuild))),
+        match &zigbuild {
+            Some(zigbuild) => {
+                toolchains.push(("linux64", Toolchain::Zig(zigbuild.clone(), LINUX_TARGET)))
+            }
             None => {
-                eprintln!(
-                    "note: linux64 is linked against this machine's glibc; for glibc 2.17, install cargo-zigbuild and ziglang (pip install -r tests/python/requirements.txt into .venv)"
-                );
+                missing.platforms.push(format!(
+                    "x86_64-linux for glibc {GLIBC} (linux64 is linked against this machine's glibc instead): cargo-zigbuild and ziglang are not in .venv"
+                ));
+                missing.zig = true;
                 toolchains.push(("linux64", Toolchain::Host));
             }
         }
@@ -69,14 +135,48 @@ pub fn libraries(root: &Path, trimmable: impl Fn(&str) -> bool) -> Result<Vec<Li
         toolchains.push((host_platform, Toolchain::Host));
     }
     if host_platform != "win64" {
-        if on_path(MINGW_GCC).is_some() && windows_std_installed() {
+        let mingw = on_path(MINGW_GCC).is_some();
+        if mingw && windows_std_installed() {
             toolchains.push(("win64", Toolchain::Windows));
-        } else if on_path(MINGW_GCC).is_some() && debian_windows_toolchain() {
+        } else if mingw && debian_windows_toolchain() {
             toolchains.push(("win64", Toolchain::DebianWindows));
         } else {
-            eprintln!(
-                "note: packing {host_platform} only; for win64 too: apt-get install mingw-w64, and rustup target add {WINDOWS_TARGET} (or apt-get install rustc-web cargo-web rust-web-src)"
-            );
+            let mut why = Vec::new();
+            if !mingw {
+                why.push("mingw-w64 is not installed");
+                missing.apt.push("mingw-w64");
+            }
+            if !windows_std_installed() {
+                why.push("rustup has no x86_64-pc-windows-gnu standard library");
+                missing.targets.push(WINDOWS_TARGET);
+            }
+            missing
+                .platforms
+                .push(format!("x86_64-windows (win64): {}", why.join(", ")));
+        }
+    }
+    if host_platform == "linux64" {
+        let std = std_installed(AARCH64_TARGET);
+        match (&zigbuild, std) {
+            (Some(zigbuild), true) => toolchains.push((
+                super::standard::AARCH64_LINUX,
+                Toolchain::Zig(zigbuild.clone(), AARCH64_TARGET),
+            )),
+            _ => {
+                let mut why = Vec::new();
+                if zigbuild.is_none() {
+                    why.push("cargo-zigbuild and ziglang are not in .venv");
+                    missing.zig = true;
+                }
+                if !std {
+                    why.push("rustup has no aarch64-unknown-linux-gnu standard library");
+                    missing.targets.push(AARCH64_TARGET);
+                }
+                missing.platforms.push(format!(
+                    "aarch64-linux (FMI 3.0 FMUs only): {}",
+                    why.join(", ")
+                ));
+            }
         }
     }
     let mut libraries = Vec::new();
@@ -104,7 +204,7 @@ pub fn libraries(root: &Path, trimmable: impl Fn(&str) -> bool) -> Result<Vec<Li
             }
         }
     }
-    Ok(libraries)
+    Ok(Built { libraries, missing })
 }
 
 fn on_path(program: &str) -> Option<PathBuf> {
@@ -124,9 +224,15 @@ fn find_zigbuild(root: &Path) -> Option<PathBuf> {
 /// Whether this machine's compiler has the Windows standard library (rustup's rust-std
 /// component for the target).
 fn windows_std_installed() -> bool {
+    std_installed(WINDOWS_TARGET)
+}
+
+/// Whether this machine's compiler has the standard library of `target` (rustup's rust-std
+/// component for it).
+fn std_installed(target: &str) -> bool {
     let rustc = std::env::var_os("RUSTC").unwrap_or("rustc".into());
     Command::new(rustc)
-        .args(["--print", "target-libdir", "--target", WINDOWS_TARGET])
+        .args(["--print", "target-libdir", "--target", target])
         .output()
         .ok()
         .filter(|output| output.status.success())
@@ -174,20 +280,20 @@ fn build(toolchain: &Toolchain, root: &Path) -> Result<PathBuf, String> {
             command.arg("build").args(args);
             (command, root.join("target").join(PROFILE).join("examples"))
         }
-        Toolchain::Zig(zigbuild) => {
+        Toolchain::Zig(zigbuild, target) => {
             let mut command = Command::new(zigbuild);
             command
                 .arg("zigbuild")
                 .args(args)
                 .arg("--target")
-                .arg(format!("{LINUX_TARGET}.2.17"));
+                .arg(format!("{target}.{GLIBC}"));
             // cargo-zigbuild runs zig as `python3 -m ziglang`: the python beside it has it.
             if let Some(bin) = zigbuild.parent() {
                 command.env("PATH", path_with(bin));
             }
             (
                 command,
-                root.join(format!("target/{LINUX_TARGET}/{PROFILE}/examples")),
+                root.join(format!("target/{target}/{PROFILE}/examples")),
             )
         }
         Toolchain::Windows => {
@@ -236,4 +342,28 @@ fn build(toolchain: &Toolchain, root: &Path) -> Result<PathBuf, String> {
         return Err(format!("the build failed ({}):\n{tail}", output.status));
     }
     Ok(built)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Missing;
+
+    /// Oracle: the commands docs/platforms.md gives for each platform, joined into one line.
+    #[test]
+    fn the_missing_platforms_name_one_command() {
+        assert_eq!(Missing::default().report(), None);
+        let missing = Missing {
+            platforms: vec!["x86_64-windows (win64): mingw-w64 is not installed".into()],
+            targets: vec!["x86_64-pc-windows-gnu", "aarch64-unknown-linux-gnu"],
+            apt: vec!["mingw-w64"],
+            zig: true,
+        };
+        assert_eq!(
+            missing.command().unwrap(),
+            "rustup target add x86_64-pc-windows-gnu aarch64-unknown-linux-gnu && sudo apt-get install -y mingw-w64 && (test -d .venv || python3 -m venv .venv) && .venv/bin/pip install cargo-zigbuild ziglang"
+        );
+        let report = missing.report().unwrap();
+        assert!(report.starts_with("not built"));
+        assert!(report.ends_with(&missing.command().unwrap()));
+    }
 }

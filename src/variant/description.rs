@@ -1,4 +1,5 @@
-//! What a variant's FMU shows: its modelDescription.xml (from the one writer), its GUID, the
+//! What a variant's FMU shows: its modelDescription.xml for FMI 2.0 and FMI 3.0 (from the one
+//! writer), its GUID (FMI 3.0's instantiationToken), the
 //! [`Scope`] its instances run in, and the values it fixes.
 
 use super::Variant;
@@ -39,6 +40,21 @@ impl Variant {
 
     /// The trimmed modelDescription.xml and its GUID (the hash `build.rs` uses for full models).
     pub fn model_description(&self) -> (String, String) {
+        self.with_description(|description| description.write())
+    }
+
+    /// The trimmed FMI 3.0 modelDescription.xml and its instantiationToken: the same string as
+    /// the FMI 2.0 GUID ([`Self::model_description`]), so one library checks one string for both.
+    pub fn model_description_fmi3(&self) -> (String, String) {
+        self.with_description(|description| {
+            let (guid, _) = description.write();
+            let xml = description.write_fmi3(&guid);
+            (guid, xml)
+        })
+    }
+
+    /// Calls `write` with the description of the kept interface.
+    fn with_description<R>(&self, write: impl FnOnce(&Description) -> R) -> R {
         let variables = self.kept_variables();
         let starts: Vec<(u32, f64)> = variables
             .iter()
@@ -52,7 +68,7 @@ impl Variant {
             let _ = write!(hidden, ";{}={:016x}", var.value_reference, value.to_bits());
         }
         let keeps_input = variables.iter().any(|v| v.causality == Causality::Input);
-        Description {
+        write(&Description {
             model_identifier: &self.name,
             description: &self.description,
             variables: &variables,
@@ -62,8 +78,7 @@ impl Variant {
             // Only a kept input can be interpolated; the output derivatives come with it.
             interpolates_inputs: keeps_input && self.model.table.interpolates_inputs,
             hidden: &hidden,
-        }
-        .write()
+        })
     }
 
     /// What an instance of this FMU hides: every variable not kept.

@@ -1,0 +1,201 @@
+//! The FMI 3.0 modelDescription.xml of the same [`Description`] the FMI 2.0 one is written from:
+//! the same variables, value references, start values, units and experiment, so the two FMUs of
+//! a model differ only in what each standard spells differently.
+
+use super::fmi3_xml::*;
+use super::xml::{causality, finite, number, variability, Category, LogCategories};
+use super::Description;
+use crate::variables::variable::{Causality, Kind, Variability, Variable, LOG_CATEGORIES};
+
+/// The value reference of `time`, the independent variable FMI 3.0 requires every FMU to
+/// declare (FMI 2.0 leaves it implicit); no table uses it.
+pub const TIME_VALUE_REFERENCE: u32 = 0;
+
+/// The name of the independent variable.
+pub const TIME_NAME: &str = "time";
+
+/// What `logCalls` logs, in FMI 3.0's names; the categories are those of FMI 2.0.
+const LOG_CALLS: &str = "The calls that change the instance, with their arguments: fmi3Enter/ExitInitializationMode, fmi3SetXXX, fmi3DoStep, fmi3Get/Set/DeSerializeFMUState, fmi3Terminate, fmi3Reset";
+
+fn log_categories3() -> LogCategories<'static> {
+    LogCategories {
+        categories: LOG_CATEGORIES
+            .iter()
+            .map(|&(name, description)| Category {
+                name,
+                description: if name == "logCalls" {
+                    LOG_CALLS
+                } else {
+                    description
+                },
+            })
+            .collect(),
+    }
+}
+
+impl Description<'_> {
+    /// The FMI 3.0 modelDescription.xml. Its instantiationToken is `token`: the GUID of the FMI
+    /// 2.0 description ([`Description::write`]), so that one library checks one string whichever
+    /// standard instantiates it.
+    pub fn write_fmi3(&self, token: &str) -> String {
+        to_xml3(&self.model_description3(token))
+    }
+
+    fn variable3<'b>(&'b self, v: &'b Variable) -> Variable3<'b> {
+        let start = self.start(v);
+        let (causality, variability) = (causality(v.causality), variability(v.variability));
+        match v.kind {
+            Kind::Real {
+                start: table_start,
+                unit,
+                min,
+                max,
+            } => Variable3::Float64 {
+                name: v.name,
+                value_reference: v.value_reference,
+                description: v.description.to_string(),
+                causality,
+                variability,
+                // Every continuous input is read at the FMU's own steps inside a doStep.
+                intermediate_update: (v.causality == Causality::Input
+                    && v.variability == Variability::Continuous)
+                    .then_some(true),
+                unit: (!unit.is_empty()).then_some(unit),
+                // Calculated outputs may not carry a start value.
+                start: (v.causality != Causality::Output)
+                    .then(|| number(start.unwrap_or(table_start))),
+                min: finite(min),
+                max: finite(max),
+            },
+            Kind::Integer {
+                start: table_start,
+                min,
+                max,
+            } => Variable3::Int32 {
+                name: v.name,
+                value_reference: v.value_reference,
+                description: v.description.to_string(),
+                causality,
+                variability,
+                declared_type: None,
+                start: start.map_or(table_start, |x| x as i32),
+                min,
+                max,
+            },
+            Kind::Switch {
+                type_name,
+                start: table_start,
+            } => {
+                let enum_type = self.switch_type(type_name);
+                Variable3::Int32 {
+                    name: v.name,
+                    value_reference: v.value_reference,
+                    description: format!("{} ({})", v.description, enum_type.listing()),
+                    causality,
+                    variability,
+                    declared_type: Some(type_name),
+                    start: start.map_or(table_start, |x| x as i32),
+                    min: 1,
+                    max: enum_type.items.len() as i32,
+                }
+            }
+        }
+    }
+
+    fn time_variable() -> Variable3<'static> {
+        Variable3::Float64 {
+            name: TIME_NAME,
+            value_reference: TIME_VALUE_REFERENCE,
+            description: "Simulation time".to_string(),
+            causality: "independent",
+            variability: "continuous",
+            intermediate_update: None,
+            unit: Some("s"),
+            start: None,
+            min: None,
+            max: None,
+        }
+    }
+
+    fn model_structure3(&self) -> ModelStructure3 {
+        // A dependency on an input the list leaves out (a variant's hidden input, held at its
+        // value) is no dependency, as in FMI 2.0.
+        let listed = |vr: &&u32| self.variables.iter().any(|v| v.value_reference == **vr);
+        let outputs: Vec<&Variable> = self
+            .variables
+            .iter()
+            .copied()
+            .filter(|v| v.causality == Causality::Output)
+            .collect();
+        ModelStructure3 {
+            outputs: outputs
+                .iter()
+                .map(|v| Unknown3 {
+                    value_reference: v.value_reference,
+                    dependencies: Some(
+                        v.depends_on
+                            .iter()
+                            .filter(listed)
+                            .map(u32::to_string)
+                            .collect::<Vec<_>>()
+                            .join(" "),
+                    ),
+                })
+                .collect(),
+            // Every output is calculated at initialisation from all parameters and inputs.
+            initial_unknowns: outputs
+                .iter()
+                .map(|v| Unknown3 {
+                    value_reference: v.value_reference,
+                    dependencies: None,
+                })
+                .collect(),
+        }
+    }
+
+    fn model_description3<'b>(&'b self, token: &'b str) -> ModelDescription3<'b> {
+        let mut variables = vec![Self::time_variable()];
+        variables.extend(self.variables.iter().map(|v| self.variable3(v)));
+        ModelDescription3 {
+            fmi_version: "3.0",
+            model_name: self.model_identifier,
+            instantiation_token: token,
+            description: self.description,
+            generation_tool: concat!("friction-fmu ", env!("CARGO_PKG_VERSION")),
+            naming: "flat",
+            co_simulation: CoSimulation3 {
+                model_identifier: self.model_identifier,
+                needs_execution_tool: false,
+                once_per_process: false,
+                get_set_state: true,
+                serialize_state: true,
+                directional_derivatives: false,
+                variable_step: true,
+                max_output_derivative_order: self.interpolates_inputs.into(),
+                intermediate_update: true,
+                might_return_early: false,
+                return_early_after_intermediate_update: false,
+                event_mode: false,
+            },
+            // `time` is in seconds.
+            units: self.unit_definitions(&|name| name == "s" || self.uses_unit(name)),
+            types: TypeDefinitions3 {
+                types: self
+                    .enum_types
+                    .iter()
+                    .filter(|e| self.uses_type(e.name))
+                    .map(|e| Int32Type {
+                        name: e.name,
+                        description: e.listing(),
+                        min: 1,
+                        max: e.items.len() as i32,
+                    })
+                    .collect(),
+            },
+            log_categories: log_categories3(),
+            default_experiment: self.default_experiment(),
+            variables: ModelVariables3 { variables },
+            structure: self.model_structure3(),
+        }
+    }
+}
