@@ -37,6 +37,7 @@ use friction_fmu::models::MODELS;
 use friction_fmu::variables::variable::{Causality, Kind, ModelTable};
 use fuzz_support::{integer_value, mutate, real_value, step_size, value_references, Rng, SPECIAL};
 
+mod fmi3_description;
 mod fuzz_support;
 
 /// What one step of a sequence does.
@@ -878,35 +879,60 @@ fn a_wrong_n_values_is_refused_with_a_message() {
     assert_eq!(instance.get(ValueType::Float64, &[vr], 1).0, Status::Ok);
 }
 
-/// The switches are Enumerations, written with fmi3SetInt64, the Integer variables with
-/// fmi3SetInt32; each is refused through the other's function.
+/// Every variable is read and written through the getter and setter of the type the committed
+/// FMI 3.0 modelDescription.xml declares it with (as an importer that reads the XML calls them),
+/// and refused through the other integer and float types'.
 #[test]
-fn switches_go_through_int64_and_integers_through_int32() {
+fn every_variable_goes_through_the_type_its_model_description_declares() {
+    let types = [
+        ValueType::Float64,
+        ValueType::Int32,
+        ValueType::Int64,
+        ValueType::Boolean,
+    ];
+    let mut failures = Vec::new();
     for table in MODELS.iter().map(|m| m.table) {
-        let mut instance = ImportedInstance::new(table.model_identifier, "types").unwrap();
-        for var in table.variables {
-            let vr = [var.value_reference];
-            let set = match var.kind {
-                Kind::Switch { start, .. } => (
-                    instance.set_int64(&vr, &[i64::from(start)]),
-                    instance.set_int32(&vr, &[start]),
-                ),
-                Kind::Integer { start, .. } => (
-                    instance.set_int64(&vr, &[i64::from(start)]),
-                    instance.set_int32(&vr, &[start]),
-                ),
-                Kind::Real { .. } => continue,
-            };
-            if var.causality == Causality::Parameter || var.causality == Causality::Input {
-                let expected = match var.kind {
-                    Kind::Switch { .. } => (Status::Ok, Status::Error),
-                    _ => (Status::Error, Status::Ok),
+        let id = table.model_identifier;
+        // Values are read in Initialization Mode and written in Instantiated, before it.
+        let mut reader = ImportedInstance::new(id, "reader").unwrap();
+        assert_eq!(
+            reader.enter_initialization_mode(None, 0.0, None),
+            Status::Ok
+        );
+        let mut writer = ImportedInstance::new(id, "writer").unwrap();
+        for declared in fmi3_description::variables(id) {
+            let vr = [declared.value_reference];
+            for t in types {
+                let expected = if t == declared.value_type {
+                    Status::Ok
+                } else {
+                    Status::Error
                 };
-                assert_eq!(set, expected, "{}.{}", table.model_identifier, var.name);
+                let (status, values) = reader.get(t, &vr, 1);
+                if status != expected {
+                    failures.push(format!(
+                        "{id}.{} ({:?}): fmi3Get{t:?} returned {status:?}: {}",
+                        declared.name,
+                        declared.value_type,
+                        reader.last_message()
+                    ));
+                }
+                let settable = ["parameter", "input"].contains(&declared.causality.as_str());
+                if settable && t == declared.value_type && status == Status::Ok {
+                    let status = writer.set(t, &vr, &values);
+                    if status != Status::Ok {
+                        failures.push(format!(
+                            "{id}.{} ({:?}): fmi3Set{t:?} returned {status:?}: {}",
+                            declared.name,
+                            declared.value_type,
+                            writer.last_message()
+                        ));
+                    }
+                }
             }
         }
-        instance.take_messages();
     }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
 /// Everything the FMUs leave out is refused with a message naming the function, in any phase.
