@@ -29,13 +29,15 @@ use friction_fmu::fmi2::ffi::Status as Status2;
 use friction_fmu::fmi3::ffi::Status;
 use friction_fmu::importer::fmi3::{
     calls_on_handle, free_foreign_handle, ImportedInstance, Instantiation, Interface, NullArgument,
-    Unsupported, VALUE_TYPES,
+    OnIntermediateUpdate, Unsupported, VALUE_TYPES,
 };
 use friction_fmu::importer::{self as fmi2, calls_on_component, free_foreign_component, State};
 use friction_fmu::instance::calls::ValueType;
 use friction_fmu::models::MODELS;
 use friction_fmu::variables::variable::{Causality, Kind, ModelTable};
 use fuzz_support::{integer_value, mutate, real_value, step_size, value_references, Rng, SPECIAL};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
 
 mod fmi3_description;
 mod fuzz_support;
@@ -214,6 +216,102 @@ struct Slot {
     time: f64,
     /// Whether the instance was given a logMessage callback (without one it cannot explain).
     logs: bool,
+    /// What its intermediate-update hook did, if it has one.
+    hook: Arc<HookLog>,
+}
+
+impl Slot {
+    /// Whether the instance is freed, through the driver or from inside its hook.
+    fn freed(&self) -> bool {
+        self.instance.is_freed() || self.hook.freed.load(Ordering::SeqCst)
+    }
+}
+
+/// What an intermediate-update hook did, checked after each call of the sequence.
+#[derive(Default)]
+struct HookLog {
+    /// The hook called fmi3FreeInstance.
+    freed: AtomicBool,
+    /// The functions it called that returned other than OK, each to be explained in the log.
+    refused: Mutex<Vec<(String, Status)>>,
+    /// Broken promises.
+    failures: Mutex<Vec<String>>,
+}
+
+/// A hook that calls the FMU back from inside fmi3DoStep, at random, as an importer's
+/// intermediateUpdate callback might: allowed calls (getters, setters) and calls FMI 3.0 does not
+/// allow there (steps, resets, FMU states, termination, freeing the instance).
+fn hook(seed: u64, table: &'static ModelTable, log: Arc<HookLog>) -> OnIntermediateUpdate {
+    let mut rng = Rng(seed);
+    let mut states = vec![State::NULL];
+    Box::new(move |fmu: &mut ImportedInstance, time: f64| {
+        if log.freed.load(Ordering::SeqCst) || !rng.chance(30) {
+            return;
+        }
+        let state = rng.pick(&states);
+        let (function, status): (String, Status) = match rng.below(13) {
+            0 | 1 | 2 => {
+                let vrs = value_references(&mut rng, table);
+                let (status, values) = fmu.get_float64(&vrs);
+                if status == Status::Ok && values.iter().any(|x| !x.is_finite()) {
+                    lock(&log.failures).push(format!(
+                        "at t = {time}: fmi3GetFloat64({vrs:?}) = {values:?}: OK, not finite"
+                    ));
+                }
+                ("fmi3GetFloat64".into(), status)
+            }
+            3 | 4 => {
+                let vrs = value_references(&mut rng, table);
+                let values: Vec<f64> = vrs
+                    .iter()
+                    .map(|&vr| value_for(&mut rng, table, vr))
+                    .collect();
+                let t = rng.pick(&[ValueType::Float64, ValueType::Int32, ValueType::Int64]);
+                (format!("fmi3Set{t:?}"), fmu.set(t, &vrs, &values))
+            }
+            5 => match fmu.get_fmu_state() {
+                Ok(state) => {
+                    states.push(state);
+                    ("fmi3GetFMUState".into(), Status::Ok)
+                }
+                Err(status) => ("fmi3GetFMUState".into(), status),
+            },
+            6 => ("fmi3SetFMUState".into(), fmu.set_fmu_state(state)),
+            7 => ("fmi3Reset".into(), fmu.reset()),
+            8 => ("fmi3Terminate".into(), fmu.terminate()),
+            9 => {
+                let h = table.default_experiment.step_size;
+                ("fmi3DoStep".into(), fmu.do_step(time, h, false).0)
+            }
+            10 => (
+                "fmi3EnterInitializationMode".into(),
+                fmu.enter_initialization_mode(None, 0.0, None),
+            ),
+            11 => {
+                let orders = [1];
+                let vr = [table.variables[rng.below(table.variables.len())].value_reference];
+                let (status, values) = fmu.get_output_derivatives(&vr, &orders, 1);
+                if status == Status::Ok && !values[0].is_finite() {
+                    lock(&log.failures).push(format!(
+                        "at t = {time}: fmi3GetOutputDerivatives({vr:?}) = {values:?}: OK, not finite"
+                    ));
+                }
+                ("fmi3GetOutputDerivatives".into(), status)
+            }
+            _ => {
+                fmu.free();
+                log.freed.store(true, Ordering::SeqCst);
+                return;
+            }
+        };
+        if status != Status::Ok {
+            lock(&log.refused).push((function, status));
+        }
+    })
+}
+
+fn lock<T>(mutex: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    mutex.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 /// An FMI 3.0 instance; Err("") when the FMU rightly refused wrong arguments, Err(why) when it
@@ -263,14 +361,23 @@ fn instantiate(rng: &mut Rng, mut table: &'static ModelTable, name: &str) -> Res
         || arguments.event_mode_used
         || arguments.interface != Interface::CoSimulation;
     let logs = arguments.log_message;
+    let with_hook = arguments.intermediate_update && rng.chance(60);
+    let hook_seed = rng.next();
     match ImportedInstance::instantiate(&arguments) {
         Ok(_) if expect_refusal => Err(format!("instantiated with {arguments:?}")),
-        Ok(instance) => Ok(Slot {
-            instance,
-            table,
-            time: 0.0,
-            logs,
-        }),
+        Ok(mut instance) => {
+            let log = Arc::new(HookLog::default());
+            if with_hook {
+                instance.on_intermediate_update(Some(hook(hook_seed, table, log.clone())));
+            }
+            Ok(Slot {
+                instance,
+                table,
+                time: 0.0,
+                logs,
+                hook: log,
+            })
+        }
         Err(_) if !expect_refusal => Err(format!("refused {arguments:?}")),
         Err(log)
             if !logs
@@ -376,7 +483,7 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
             let table = MODELS[rng.below(MODELS.len())].table;
             // A slot whose instance was freed keeps its handle beside the new instance, so
             // later calls test that the handle stays dead.
-            let keep = slots[k].as_ref().is_some_and(|s| s.instance.is_freed()) && slots.len() < 4;
+            let keep = slots[k].as_ref().is_some_and(|s| s.freed()) && slots.len() < 4;
             match instantiate(&mut rng, table, "again") {
                 Ok(slot) if keep => slots.push(Some(slot)),
                 Ok(slot) => {
@@ -398,7 +505,7 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
             println!("{call:3}: [{k}] {op:?} ...");
         }
         let state = rng.pick(&states);
-        let live = !slot.instance.is_freed();
+        let live = !slot.freed();
         let mut function = op.function();
         let mut description = String::new();
         let status: Option<Status> = match op {
@@ -690,14 +797,34 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
         if verbose {
             println!("{call:3}: [{k}] {function}{description} -> {status:?} {messages:?}");
         }
+        // What the intermediate-update hook called from inside this call.
+        if let Some(failure) = lock(&slot.hook.failures).first() {
+            return Err(format!(
+                "call {call}: {function}{description}: hook: {failure}"
+            ));
+        }
+        for (inner, inner_status) in std::mem::take(&mut *lock(&slot.hook.refused)) {
+            let explained = messages
+                .iter()
+                .any(|m| m.status >= Status::Warning as i32 && m.text.contains(&inner));
+            if slot.logs && !explained {
+                return Err(format!(
+                    "call {call}: {function}{description}: the hook's {inner} returned {inner_status:?} without a message naming it: {messages:?}"
+                ));
+            }
+        }
         let Some(status) = status else { continue };
+        // Freed by the hook inside this call: what followed could not be logged.
+        let live = live && !slot.freed();
         if !(0..=4).contains(&(status as i32)) {
             return Err(format!(
                 "call {call}: {function}{description} returned {}",
                 status as i32
             ));
         }
-        if !live {
+        if slot.freed() && !slot.instance.is_freed() && status == Status::Error {
+            // Freed by the hook during or before this call: refused, whatever was logged before.
+        } else if !live {
             if status != Status::Error || !messages.is_empty() {
                 return Err(format!(
                     "call {call}: {function} on a freed instance gave {status:?} {messages:?}"

@@ -25,7 +25,15 @@ use crate::fmi3::ffi::{
 use crate::instance::calls::ValueType;
 use crate::instance::library::Binary;
 use std::ffi::{c_char, c_void, CString};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::Mutex;
+
+/// What the intermediateUpdate callback does besides counting: it is handed a driver instance
+/// on the handle of the instance being stepped (to call the FMU back from inside fmi3DoStep, as
+/// FMI 3.0's intermediate update mode allows for some calls) and the intermediateUpdateTime.
+/// That driver instance never frees the FMU instance; what the FMU logs goes to the stepped
+/// instance's log.
+pub type OnIntermediateUpdate = Box<dyn FnMut(&mut ImportedInstance, f64) + Send>;
 
 /// Where an instance's callbacks write: boxed so that its address, the instanceEnvironment the
 /// FMU passes back, stays put while the instance lives.
@@ -33,6 +41,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 struct Environment {
     sink: Sink,
     intermediate_updates: AtomicU64,
+    /// The handle of the instance, once instantiated, for `on_update`.
+    handle: AtomicUsize,
+    on_update: Mutex<Option<OnIntermediateUpdate>>,
 }
 
 /// The logMessage callback: FMI 3.0 passes the message as it is, no format string.
@@ -55,11 +66,12 @@ unsafe extern "C" fn record(
     });
 }
 
-/// The intermediateUpdate callback: counts the calls and never asks for an early return.
+/// The intermediateUpdate callback: counts the calls, runs the instance's
+/// [`OnIntermediateUpdate`] if it has one, and never asks for an early return.
 #[allow(clippy::too_many_arguments)]
 unsafe extern "C" fn intermediate_update(
     environment: InstanceEnvironment,
-    _time: f64,
+    time: f64,
     _variable_set_requested: Boolean,
     _variable_get_allowed: Boolean,
     _step_finished: Boolean,
@@ -70,10 +82,24 @@ unsafe extern "C" fn intermediate_update(
     if let Some(requested) = early_return_requested.as_mut() {
         *requested = ffi::FALSE;
     }
-    if let Some(environment) = (environment as *const Environment).as_ref() {
-        environment
-            .intermediate_updates
-            .fetch_add(1, Ordering::Relaxed);
+    let Some(environment) = (environment as *const Environment).as_ref() else {
+        return;
+    };
+    environment
+        .intermediate_updates
+        .fetch_add(1, Ordering::Relaxed);
+    // try_lock: a call made from inside `on_update` that steps again (refused or not) finds the
+    // hook busy and only counts.
+    let Ok(mut on_update) = environment.on_update.try_lock() else {
+        return;
+    };
+    if let Some(on_update) = on_update.as_mut() {
+        let mut borrowed = ImportedInstance::borrowing(environment.handle.load(Ordering::SeqCst));
+        // No panic may unwind into the FMU: a panicking hook is a failed test, counted by the
+        // test's panic hook.
+        let _ = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            on_update(&mut borrowed, time)
+        }));
     }
 }
 
@@ -498,6 +524,7 @@ impl ImportedInstance {
         if handle.is_null() {
             return Err(std::mem::take(&mut *environment.sink.lock()));
         }
+        environment.handle.store(handle as usize, Ordering::SeqCst);
         Ok(ImportedInstance {
             handle: handle as usize,
             freed: false,
@@ -505,8 +532,28 @@ impl ImportedInstance {
         })
     }
 
+    /// A driver instance that calls on `handle` and never frees it (marked freed, so `Drop`
+    /// leaves it), with a log of its own that the FMU never writes to.
+    fn borrowing(handle: usize) -> ImportedInstance {
+        ImportedInstance {
+            handle,
+            freed: true,
+            environment: Box::default(),
+        }
+    }
+
     fn c(&self) -> FmiInstance {
         self.handle as FmiInstance
+    }
+
+    /// Sets what the intermediateUpdate callback does (see [`OnIntermediateUpdate`]); it is only
+    /// called if the instance was given the callback ([`Instantiation::intermediate_update`]).
+    pub fn on_intermediate_update(&mut self, hook: Option<OnIntermediateUpdate>) {
+        *self
+            .environment
+            .on_update
+            .lock()
+            .unwrap_or_else(|e| e.into_inner()) = hook;
     }
 
     /// The handle the FMU handed out (kept after a free).
@@ -1128,12 +1175,8 @@ pub fn calls_on_handle(handle: usize) -> Vec<(String, Status)> {
         ]
     };
     // The getters and setters of every type, and the functions these FMUs leave out, through
-    // a driver instance that borrows the handle: marked freed, so dropping it frees nothing.
-    let mut borrowed = ImportedInstance {
-        handle,
-        freed: true,
-        environment: Box::default(),
-    };
+    // a driver instance that borrows the handle.
+    let mut borrowed = ImportedInstance::borrowing(handle);
     for t in VALUE_TYPES {
         let (status, _) = borrowed.get(t, &vr, 1);
         calls.push((format!("fmi3Get{t:?}"), status));
