@@ -250,7 +250,7 @@ fn hook(seed: u64, table: &'static ModelTable, log: Arc<HookLog>) -> OnIntermedi
         }
         let state = rng.pick(&states);
         let (function, status): (String, Status) = match rng.below(13) {
-            0 | 1 | 2 => {
+            0..=2 => {
                 let vrs = value_references(&mut rng, table);
                 let (status, values) = fmu.get_float64(&vrs);
                 if status == Status::Ok && values.iter().any(|x| !x.is_finite()) {

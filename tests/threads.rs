@@ -135,13 +135,12 @@ fn start(table: &ModelTable, index: usize, standard: Standard) -> Box<dyn Fmu> {
     instance
 }
 
+/// The bits of every output after every step.
+type Trace = Vec<Vec<u64>>;
+
 /// Runs `instance` step by step; `between_steps` is called after each step (a barrier in the
 /// concurrent run). Returns the bits of every output after every step.
-fn run(
-    table: &ModelTable,
-    instance: &mut dyn Fmu,
-    mut between_steps: impl FnMut(),
-) -> Vec<Vec<u64>> {
+fn run(table: &ModelTable, instance: &mut dyn Fmu, mut between_steps: impl FnMut()) -> Trace {
     let vrs = outputs(table);
     let h = table.default_experiment.step_size;
     let mut values = vec![0.0; vrs.len()];
@@ -197,7 +196,7 @@ fn concurrent_instances_match_sequential_runs_bit_for_bit() {
     // runs them one after another, the even threads FMI 2.0 first, the odd ones FMI 3.0 first,
     // so that both standards' calls overlap; all threads pass a barrier after every step.
     let barrier = Barrier::new(THREADS);
-    let concurrent: Vec<Vec<Vec<(Standard, Vec<Vec<u64>>)>>> = std::thread::scope(|scope| {
+    let concurrent: Vec<Vec<Vec<(Standard, Trace)>>> = std::thread::scope(|scope| {
         let handles: Vec<_> = (0..THREADS)
             .map(|index| {
                 let barrier = &barrier;
