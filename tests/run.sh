@@ -69,9 +69,9 @@ BIN=target/testing/friction-fmu
 stage "fuzzing under valgrind memcheck (invalid reads and writes, use after free)"
 FUZZ_BIN=$(linted cargo test --profile testing --test fuzz_calls --no-run 2>&1 | grep -o 'target/testing/deps/fuzz_calls-[0-9a-f]*' | head -1)
 FUZZ_SEQUENCES=5000 valgrind --error-exitcode=9 --leak-check=no -q "$FUZZ_BIN" random_call_sequences
-# The same over the FMI 3.0 boundary: 5000 sequences, about 25 s of CPU under memcheck.
+# The same over the FMI 3.0 boundary: 4000 sequences, about 25 s of CPU under memcheck.
 FUZZ3_BIN=$(linted cargo test --profile testing --test fuzz_calls_fmi3 --no-run 2>&1 | grep -o 'target/testing/deps/fuzz_calls_fmi3-[0-9a-f]*' | head -1)
-FUZZ_SEQUENCES=5000 valgrind --error-exitcode=9 --leak-check=no -q "$FUZZ3_BIN" random_fmi3_call_sequences
+FUZZ_SEQUENCES=4000 valgrind --error-exitcode=9 --leak-check=no -q "$FUZZ3_BIN" random_fmi3_call_sequences
 stage "packing the FMUs"
 $BIN build
 $BIN build variants/*.toml --out fmu-out/variants
