@@ -1083,3 +1083,63 @@ fn every_unsupported_function_is_refused_with_a_message_naming_it() {
         }
     }
 }
+
+/// An importer may call the FMU back from its intermediateUpdate callback, also with calls FMI 3.0
+/// does not allow there: fmi3DoStep, fmi3Reset, fmi3FreeInstance. The nested step and the reset
+/// are refused with a message; freeing the instance ends the step with an error, after which
+/// the handle is refused like any freed one.
+#[test]
+fn calls_from_inside_an_intermediate_update_are_refused_or_end_the_step_safely() {
+    let mut called = 0;
+    for table in MODELS.iter().map(|m| m.table) {
+        let id = table.model_identifier;
+        // Long enough to take several internal steps.
+        let step = table.default_experiment.step_size * 20.0;
+        let mut arguments = Instantiation::new(id, "hooked").unwrap();
+        arguments.intermediate_update = true;
+
+        // A nested step and a reset from inside the callback, in the second step (the solvers
+        // know their internal step from the first).
+        let mut fmu = ImportedInstance::instantiate(&arguments).unwrap();
+        assert_eq!(fmu.initialize(), Status::Ok);
+        assert_eq!(fmu.do_step(0.0, step, true).0, Status::Ok);
+        let before = fmu.intermediate_updates();
+        let refused = Arc::new(Mutex::new(Vec::new()));
+        let seen = refused.clone();
+        fmu.on_intermediate_update(Some(Box::new(move |inner, time| {
+            let nested = inner.do_step(time, 1e-6, false).0;
+            let reset = inner.reset();
+            lock(&seen).push((nested, reset));
+        })));
+        let (status, outcome) = fmu.do_step(step, step, true);
+        assert_eq!(status, Status::Ok, "{id}: {:?}", fmu.messages());
+        assert_eq!(outcome.last_successful_time, 2.0 * step);
+        if fmu.intermediate_updates() == before {
+            continue;
+        }
+        called += 1;
+        let messages = fmu.take_messages();
+        for &(nested, reset) in lock(&refused).iter() {
+            assert_eq!((nested, reset), (Status::Error, Status::Error), "{id}");
+        }
+        for function in ["fmi3DoStep", "fmi3Reset"] {
+            assert!(
+                messages.iter().any(|m| m.text.starts_with(function)),
+                "{id}: {messages:?}"
+            );
+        }
+
+        // Freeing the instance from inside the callback.
+        let mut fmu = ImportedInstance::instantiate(&arguments).unwrap();
+        assert_eq!(fmu.initialize(), Status::Ok);
+        assert_eq!(fmu.do_step(0.0, step, true).0, Status::Ok);
+        fmu.on_intermediate_update(Some(Box::new(|inner, _| inner.free())));
+        let handle = fmu.handle();
+        assert_eq!(fmu.do_step(step, step, true).0, Status::Error, "{id}");
+        all_refused(fmi3_calls_on(handle)).unwrap();
+    }
+    assert!(
+        called > 0,
+        "no model called the intermediateUpdate callback"
+    );
+}
