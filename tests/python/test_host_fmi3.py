@@ -1,8 +1,9 @@
 """Every FMU through a plain C FMI 3.0 host (tests/host/fmu_host3.c), compiled against the FMI 3.0
-headers, natively with gcc and on the win64 library under wine with mingw: its run of the
-DefaultExperiment through fmi3InstantiateCoSimulation .. fmi3DoStep .. fmi3FreeInstance equals the
-FMI 2.0 host's (tests/host/fmu_host.c) run of the FMI 2.0 FMU within 1e-12 of each output's range,
-on the same platform. Every status must be fmi3OK, every step must end where it was asked to, and
+headers, natively with gcc, on the win64 library under wine with mingw, and on the aarch64-linux
+library under qemu-aarch64 with aarch64-linux-gnu-gcc: its run of the DefaultExperiment through
+fmi3InstantiateCoSimulation .. fmi3DoStep .. fmi3FreeInstance equals the FMI 2.0 host's
+(tests/host/fmu_host.c) run of the FMI 2.0 FMU within 1e-12 of each output's range, on the same
+platform (aarch64: against x86_64's). Every status must be fmi3OK, every step must end where it was asked to, and
 a wrong instantiationToken is refused with a logged message.
 
 The FMU run is fmu-out/fmi3/<name>.fmu where it has been packed; else the FMI 2.0 FMU's own
@@ -28,10 +29,15 @@ from conftest import FMU_DIR, ROOT
 from test_host import MINGW, WINE, read_csv, run_host
 
 HOST = ROOT / "tests" / "host"
+QEMU = shutil.which("qemu-aarch64")
+AARCH64_GCC = shutil.which("aarch64-linux-gnu-gcc")
+# Where libc6-arm64-cross puts the aarch64 loader and C library, for qemu-aarch64 -L.
+AARCH64_SYSROOT = "/usr/aarch64-linux-gnu"
 FMI2_FMUS = sorted(FMU_DIR.glob("*.fmu")) + sorted((FMU_DIR / "variants").glob("*.fmu"))
 IDS = [str(f.relative_to(FMU_DIR).with_suffix("")) for f in FMI2_FMUS]
-# The win64 runs under wine cost a few seconds each: the full models and a variant of each kind.
-WINE_RUNS = ["LongitudinalFriction", "TransverseFriction", "DryFrictionOscillator", "DriveTrain",
+# Under wine and qemu a run costs seconds: the full models and a variant of each kind (the FMI 2.0
+# host runs every FMU's win64 and aarch64-linux library, tests/python/test_host.py).
+EMULATED_RUNS = ["LongitudinalFriction", "TransverseFriction", "DryFrictionOscillator", "DriveTrain",
              "variants/Fig8", "variants/OscillatorFig1"]
 
 
@@ -68,6 +74,14 @@ def hosts(tmp_path_factory):
         subprocess.run([MINGW, "-O2", "-shared", "-o", str(directory / "bcryptprimitives.dll"),
                         str(HOST / "bcryptprimitives.c"), "-ladvapi32"], check=True)
         hosts["windows"] = ([WINE, str(exe2)], [WINE, str(exe3)])
+    if os.environ.get("CI") and not (QEMU and AARCH64_GCC):
+        pytest.fail("CI runs the aarch64 checks: tests/run.sh installs qemu-user and gcc-aarch64-linux-gnu")
+    if QEMU and AARCH64_GCC:
+        # Against the x86_64 FMI 2.0 host: aarch64 has no FMI 2.0 platform name.
+        arm = directory / "fmu_host3_aarch64"
+        subprocess.run([AARCH64_GCC, "-O2", "-Wall", "-Wextra", "-Werror", "-I", str(headers), "-o", str(arm),
+                        str(HOST / "fmu_host3.c"), "-ldl"], check=True)
+        hosts["aarch64"] = ([str(native2)], [QEMU, "-L", AARCH64_SYSROOT, str(arm)])
     return hosts
 
 
@@ -85,18 +99,22 @@ def fmi3_twin(fmi2_fmu, tmp_path):
     return extract(twin if twin.exists() else fmi2_fmu, tmp_path / "fmi3")
 
 
-@pytest.mark.parametrize("platform", ["linux", "windows"])
+@pytest.mark.parametrize("platform", ["linux", "windows", "aarch64"])
 @pytest.mark.parametrize("fmu", FMI2_FMUS, ids=IDS)
 def test_the_fmi3_host_runs_the_default_experiment_as_the_fmi2_host_does(platform, fmu, hosts, tmp_path):
     name = str(fmu.relative_to(FMU_DIR).with_suffix(""))
     if platform not in hosts:
-        pytest.skip("no wine and mingw-w64 here")
-    if platform == "windows" and name not in WINE_RUNS:
-        pytest.skip("under wine: the full models and a variant of each kind")
+        pytest.skip("no wine and mingw-w64 here" if platform == "windows"
+                    else "no qemu-user and gcc-aarch64-linux-gnu here")
+    if platform != "linux" and name not in EMULATED_RUNS:
+        pytest.skip("emulated: the full models and a variant of each kind")
     host2, host3 = hosts[platform]
+    directory3 = fmi3_twin(fmu, tmp_path)
+    if platform == "aarch64" and not (directory3 / "binaries" / "aarch64-linux").is_dir():
+        pytest.skip("no aarch64-linux library in fmu-out/fmi3: `friction-fmu build` says why")
     status, out2, err = run_host(host2, extract(fmu, tmp_path / "fmi2"))
     assert status == 0, err[-3000:]
-    status, out3, err = run_host(host3, fmi3_twin(fmu, tmp_path))
+    status, out3, err = run_host(host3, directory3)
     assert status == 0, err[-3000:]
     fmi2_run, fmi3_run = read_csv(out2), read_csv(out3)
     assert list(fmi3_run) == list(fmi2_run)
