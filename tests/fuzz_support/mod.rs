@@ -9,6 +9,7 @@
 
 use friction_fmu::variables::values::check_value;
 use friction_fmu::variables::variable::{Kind, ModelTable, Variable};
+use std::cell::Cell;
 use std::io::Write as _;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
@@ -250,12 +251,22 @@ pub fn mutate(rng: &mut Rng, pool: &[Vec<u8>]) -> (Vec<u8>, String) {
 pub static PANICS: AtomicUsize = AtomicUsize::new(0);
 pub static PANIC_MESSAGES: Mutex<Vec<String>> = Mutex::new(Vec::new());
 
-/// Counts every panic, also those the FMU catches at its C boundary (still a bug there).
+thread_local! {
+    /// Whether this thread runs sequences: panics elsewhere (another test of the same binary
+    /// failing) are not the fuzzer's to count.
+    static FUZZING: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Counts every panic on the threads that run sequences, also those the FMU catches at its C
+/// boundary (still a bug there).
 pub fn count_panics() {
     static HOOK: Once = Once::new();
     HOOK.call_once(|| {
         let default = std::panic::take_hook();
         std::panic::set_hook(Box::new(move |info| {
+            if !FUZZING.with(Cell::get) {
+                return default(info);
+            }
             PANICS.fetch_add(1, Ordering::SeqCst);
             let mut messages = PANIC_MESSAGES.lock().unwrap_or_else(|e| e.into_inner());
             if messages.len() < 5 {
@@ -323,6 +334,7 @@ pub fn fuzz(sequence: Sequence, seed: u64, count: u64) -> Vec<(u64, String)> {
                 let failures = &failures;
                 let (slot_index, slot_since) = &running[thread as usize];
                 scope.spawn(move || {
+                    FUZZING.with(|f| f.set(true));
                     let mut index = thread;
                     while index < count {
                         slot_since.store(started.elapsed().as_secs(), Ordering::SeqCst);
