@@ -3,17 +3,21 @@
 //! these only see the binary and the modelDescription.xml inside the .fmu, the way a simulation
 //! tool does: the importer unzips the archive, parses the XML, dlopens the library and calls the
 //! fmi2* C functions. They reproduce one row of Table 1 of Leus & Gutowski 2008 (JTAM 46(1)), and
-//! run every model's default experiment.
+//! run every model's default experiment, in both standards: the crate's FMI 3.0 importer runs the
+//! FMI 3.0 FMU packed with the same library.
 
 use std::path::PathBuf;
 
 use fmi::fmi2::import::Fmi2Import;
 use fmi::fmi2::instance::{CoSimulation, Common};
+use fmi::fmi3::import::Fmi3Import;
+use fmi::fmi3::{self, Fmi3Model, GetSet};
 use fmi::traits::FmiImport;
 use friction_fmu::fmi2::ffi::Status;
 use friction_fmu::importer::{ImportedInstance, Instantiation};
 use friction_fmu::models::longitudinal::table::TABLE;
 use friction_fmu::models::MODELS;
+use friction_fmu::package::Standard;
 use friction_fmu::variables::variable::{Causality, Kind};
 
 const MODEL: &str = "LongitudinalFriction";
@@ -47,6 +51,11 @@ fn cdylib() -> PathBuf {
 
 /// Packs `model`'s FMU into a fresh directory of its own; returns the directory and the .fmu path.
 fn pack(model: &'static str, tag: &str) -> (PathBuf, PathBuf) {
+    pack_for(Standard::Fmi2, model, tag)
+}
+
+/// Packs `model`'s FMU of `standard` (see [`pack`]).
+fn pack_for(standard: Standard, model: &'static str, tag: &str) -> (PathBuf, PathBuf) {
     let dir = std::env::temp_dir().join(format!(
         "friction-fmu-fmi-import-{}-{tag}",
         std::process::id()
@@ -60,7 +69,8 @@ fn pack(model: &'static str, tag: &str) -> (PathBuf, PathBuf) {
         variant: false,
         path: cdylib(),
     };
-    let fmu = friction_fmu::package::pack(model, &[library], &dir).expect("pack the FMU");
+    let fmu =
+        friction_fmu::package::pack_for(standard, model, &[library], &dir).expect("pack the FMU");
     (dir, fmu)
 }
 
@@ -232,5 +242,76 @@ fn every_model_runs_its_default_experiment_as_through_our_importer() {
             );
         }
         let _ = std::fs::remove_dir_all(dir);
+
+        let Some(fmi3) = run_fmi3(id, tolerance, (start, stop), n, &vrs) else {
+            continue;
+        };
+        for ((name, _), (a, b)) in outputs.iter().zip(theirs.iter().zip(&fmi3)) {
+            assert!(
+                a.to_bits() == b.to_bits(),
+                "{id}.{name}: {a:e} through the fmi crate's FMI 2.0 importer, {b:e} through its FMI 3.0 one"
+            );
+        }
     }
+}
+
+/// The FMI 3.0 descriptions the fmi crate's reader (fmi-schema 0.8) refuses although the FMI 3.0
+/// schema takes them: it spells BaseUnit's ampere `a` where the standard says `A`, and DriveTrain's
+/// current is in A. The test checks that this is still the reason, so that a reader that takes
+/// the description brings DriveTrain back into it.
+const UNREAD_BY_FMI_SCHEMA: &[(&str, &str)] = &[("DriveTrain", "name: \"BaseUnit\", field: \"A\"")];
+
+/// `id`'s FMI 3.0 FMU through the fmi crate's FMI 3.0 importer: initialized with `tolerance` over
+/// `(start, stop)`, stepped in `n` steps; returns the Float64 values of `vrs` at the end (None
+/// for a description the reader refuses, [`UNREAD_BY_FMI_SCHEMA`]).
+fn run_fmi3(
+    id: &'static str,
+    tolerance: Option<f64>,
+    span: (f64, f64),
+    n: usize,
+    vrs: &[u32],
+) -> Option<Vec<f64>> {
+    let (start, stop) = span;
+    let t = |k: usize| start + (stop - start) * k as f64 / n as f64;
+    let (dir, fmu_file) = pack_for(Standard::Fmi3, id, "fmi3");
+    let imported: Result<Fmi3Import, _> = fmi::import::from_path(&fmu_file);
+    if let Some(&(_, why)) = UNREAD_BY_FMI_SCHEMA.iter().find(|(model, _)| *model == id) {
+        let error = imported.err().map(|e| format!("{e:?}")).unwrap_or_default();
+        assert!(
+            error.contains(why),
+            "{id}: expected the reader to refuse it for {why}, got {error:?}"
+        );
+        let _ = std::fs::remove_dir_all(dir);
+        return None;
+    }
+    let import = imported.expect("import the FMI 3.0 FMU");
+    assert_eq!(import.model_description().fmi_version, "3.0");
+    let mut fmu = import
+        .instantiate_cs("fmi_import", false, true, false, false, &[])
+        .expect("fmi3InstantiateCoSimulation");
+    fmi3::Common::enter_initialization_mode(&mut fmu, tolerance, start, Some(stop))
+        .expect("fmi3EnterInitializationMode");
+    fmi3::Common::exit_initialization_mode(&mut fmu).expect("fmi3ExitInitializationMode");
+    let (mut event, mut terminate, mut early, mut last) = (false, false, false, 0.0);
+    for k in 0..n {
+        fmi3::CoSimulation::do_step(
+            &mut fmu,
+            t(k),
+            t(k + 1) - t(k),
+            true,
+            &mut event,
+            &mut terminate,
+            &mut early,
+            &mut last,
+        )
+        .unwrap_or_else(|e| panic!("{id}: fmi3DoStep at t = {:e}: {e}", t(k)));
+        assert_eq!(last, t(k + 1), "{id}: lastSuccessfulTime");
+        assert!(!(event || terminate || early), "{id}");
+    }
+    let mut values = vec![0.0; vrs.len()];
+    fmu.get_float64(vrs, &mut values).expect("fmi3GetFloat64");
+    fmi3::Common::terminate(&mut fmu).expect("fmi3Terminate");
+    drop(fmu);
+    let _ = std::fs::remove_dir_all(dir);
+    Some(values)
 }

@@ -2,8 +2,9 @@
 # Runs every test: formatting, lints and the API documentation's links, the Rust unit and
 # integration tests (one of which loads the packed FMU through the `fmi` crate), the call-sequence
 # fuzzers of both standards once more under valgrind's memcheck, then the Python tests against
-# fmu-out/: fmpy, the co-simulation engines libcosim and ecos, and a C host natively and, on the
-# win64 libraries, under wine.
+# fmu-out/: fmpy, the co-simulation engines libcosim and ecos, and C hosts of both standards
+# natively, on the win64 libraries under wine and on the aarch64-linux libraries under
+# qemu-aarch64.
 # Installs what it needs with apt (below) and a .venv with fmpy, the engines, and cargo-zigbuild
 # with ziglang (the linux64 library for glibc 2.17).
 set -euo pipefail
@@ -11,13 +12,18 @@ cd "$(dirname "$0")/.."
 
 # libclang-dev: bindgen, for the fmi crate; libzstd-dev and pkg-config: the zstd library the fmi
 # crate's zip links (.cargo/config.toml); valgrind: memcheck; libtbb12: ecos; mingw-w64: links
-# the win64 library; wine64: runs the C host on it. The win64 standard library comes with
-# rustup; where rustup cannot add it, Debian's Rust builds it from source (slower).
-APT_PACKAGES="libclang-dev libzstd-dev pkg-config valgrind libtbb12 mingw-w64 wine64"
+# the win64 library; wine64: runs the C host on it; gcc-aarch64-linux-gnu and libc6-arm64-cross:
+# build the C host for aarch64 (binutils-aarch64-linux-gnu, which comes with it, reads the aarch64
+# library's symbols); qemu-user: runs it on the aarch64-linux library. The win64 standard library
+# comes with rustup; where rustup cannot add it, Debian's Rust builds it from source (slower).
+# The aarch64 standard library comes with rustup only (cargo-zigbuild links it).
+APT_PACKAGES="libclang-dev libzstd-dev pkg-config valgrind libtbb12 mingw-w64 wine64 qemu-user gcc-aarch64-linux-gnu libc6-arm64-cross"
 if ! rustup target add x86_64-pc-windows-gnu >/dev/null 2>&1; then
     echo "== rustup cannot add x86_64-pc-windows-gnu: Debian's Rust builds its standard library"
     APT_PACKAGES="$APT_PACKAGES rustc-web cargo-web rust-web-src"
 fi
+rustup target add aarch64-unknown-linux-gnu >/dev/null 2>&1 ||
+    echo "== rustup cannot add aarch64-unknown-linux-gnu: the FMI 3.0 FMUs go without aarch64-linux"
 missing=""
 for package in $APT_PACKAGES; do
     dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing="$missing $package"
@@ -75,7 +81,7 @@ FUZZ_SEQUENCES=4000 valgrind --error-exitcode=9 --leak-check=no -q "$FUZZ3_BIN" 
 stage "packing the FMUs"
 $BIN build
 $BIN build variants/*.toml --out fmu-out/variants
-stage "pytest (fmpy, libcosim, ecos, the C host natively and under wine)"
+stage "pytest (fmpy, libcosim, ecos, the C host natively, under wine and under qemu-aarch64)"
 # wine's prefix outside the source tree: cargo scans the package directory, and the prefix links
 # to /.
 export WINEPREFIX="${WINEPREFIX:-$HOME/.wine-friction-fmu}" WINEDEBUG=-all WINEDLLOVERRIDES="mscoree,mshtml="

@@ -1,7 +1,8 @@
 """The items of a switch parameter (`law`, `solver`, `drive_source`, ...).
 
-Switches are Integer variables with a declared type (co-simulation engines ignore FMI 2.0
-Enumerations); each switch's description ends with its numbered items:
+Switches are Integer variables (Int32 in the FMI 3.0 FMUs) with a declared type (co-simulation
+engines ignore FMI 2.0 Enumerations, and ecos FMI 3.0 ones); each switch's description ends with
+its numbered items:
 "Friction law (1 coulomb, 2 dahl, 3 lugre)"."""
 import re
 
@@ -10,7 +11,7 @@ _ITEMS = re.compile(r"\((\d+ \w+(?:, \d+ \w+)*)\)$")
 
 def items(var):
     """{item name: integer} of a switch variable read by fmpy, or None for any other variable."""
-    if var.type != "Integer" or var.declaredType is None:
+    if var.type not in ("Integer", "Int32") or var.declaredType is None:
         return None
     listed = _ITEMS.search(var.description or "")
     if listed is None:

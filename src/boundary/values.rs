@@ -9,12 +9,10 @@ pub fn is_real(kind: &Kind) -> bool {
     matches!(kind, Kind::Real { .. })
 }
 
-pub fn is_integer(kind: &Kind) -> bool {
-    matches!(kind, Kind::Integer { .. })
-}
-
-pub fn is_switch(kind: &Kind) -> bool {
-    matches!(kind, Kind::Switch { .. })
+/// The Integers and the switches, which both standards' descriptions declare as integers
+/// (docs/interoperability.md says why not as Enumerations).
+pub fn is_integer_or_switch(kind: &Kind) -> bool {
+    matches!(kind, Kind::Integer { .. } | Kind::Switch { .. })
 }
 
 /// For the types no variable of these FMUs has.

@@ -14,6 +14,7 @@ pub static FMI2: Dialect = Dialect {
         Phase::Error => "Error",
         Phase::IntermediateUpdate => "IntermediateUpdateMode",
     },
+    independent: None,
 };
 
 fn function(call: Call) -> &'static str {

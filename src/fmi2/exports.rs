@@ -11,12 +11,11 @@ use super::ffi::*;
 use super::logger::Logger;
 use crate::boundary::args::{slice, slice_mut, text};
 use crate::boundary::states;
-use crate::boundary::values::{self, access, is_integer, is_none, is_real, is_switch, Access};
+use crate::boundary::values::{self, access, is_integer_or_switch, is_none, is_real, Access};
 use crate::instance::calls::{Call, ValueType};
 use crate::instance::library::Binary;
 use crate::instance::log::CATEGORY_ERROR;
 use crate::instance::{handles, Instance, Status as Outcome};
-use crate::variables::variable::Kind;
 use std::ffi::c_int;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
@@ -189,11 +188,6 @@ pub unsafe extern "C" fn fmi2Reset(c: Component) -> Status {
         instance.trace(|| "fmi2Reset()".into());
         instance.reset()
     })
-}
-
-/// FMI 2.0's Integer covers the Integers and the switches (declared as Integers).
-fn is_integer_or_switch(kind: &Kind) -> bool {
-    is_integer(kind) || is_switch(kind)
 }
 
 unsafe fn get_values<T>(

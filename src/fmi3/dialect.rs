@@ -2,6 +2,8 @@
 
 use crate::instance::calls::{Call, Dialect, ValueType};
 use crate::instance::phase::Phase;
+use crate::model_description::{TIME_NAME, TIME_VALUE_REFERENCE};
+use crate::variables::variable::{Causality, Kind, Variability, Variable};
 
 pub static FMI3: Dialect = Dialect {
     function,
@@ -14,6 +16,23 @@ pub static FMI3: Dialect = Dialect {
         Phase::Error => "Error",
         Phase::IntermediateUpdate => "IntermediateUpdateMode",
     },
+    independent: Some(&TIME),
+};
+
+/// `time`, the independent variable of every FMI 3.0 description.
+static TIME: Variable = Variable {
+    name: TIME_NAME,
+    value_reference: TIME_VALUE_REFERENCE,
+    description: "Simulation time",
+    causality: Causality::Independent,
+    variability: Variability::Continuous,
+    kind: Kind::Real {
+        start: 0.0,
+        unit: "s",
+        min: f64::NEG_INFINITY,
+        max: f64::INFINITY,
+    },
+    depends_on: &[],
 };
 
 fn function(call: Call) -> &'static str {

@@ -12,7 +12,7 @@ use super::logger::Logger;
 use super::updates;
 use crate::boundary::args::{slice, slice_mut, text};
 use crate::boundary::states;
-use crate::boundary::values::{self, access, is_integer, is_none, is_real, is_switch, Access};
+use crate::boundary::values::{self, access, is_integer_or_switch, is_none, is_real, Access};
 use crate::instance::calls::{Call, ValueType};
 use crate::instance::library::Binary;
 use crate::instance::log::{LogSink, CATEGORY_ERROR};
@@ -348,17 +348,16 @@ typed_access!(
     fmi3SetInt32,
     Int32,
     i32,
-    is_integer,
+    is_integer_or_switch,
     |x| x as i32,
     f64::from
 );
-// Switches are Enumerations, which FMI 3.0 reads and writes as Int64.
 typed_access!(
     fmi3GetInt64,
     fmi3SetInt64,
     Int64,
     i64,
-    is_switch,
+    is_none,
     |x| x as i64,
     |x| x as f64
 );

@@ -4,6 +4,7 @@
 //! [`super::Instance::check_phase`] refuses a call outside the phases listed here, naming them.
 
 use super::phase::Phase::{self, *};
+use crate::variables::variable::Variable;
 
 /// A variable type as the getters and setters of a standard name it (FMI 2.0's Real is
 /// [`ValueType::Float64`], its Integer [`ValueType::Int32`]).
@@ -65,6 +66,9 @@ pub struct Dialect {
     pub function: fn(Call) -> &'static str,
     /// The standard's name of a phase (FMI 2.0's StepComplete is FMI 3.0's StepMode).
     pub phase: fn(Phase) -> &'static str,
+    /// The independent variable the standard's descriptions declare (FMI 3.0 requires one,
+    /// `time`; FMI 2.0's leave it out), read as the instance's time.
+    pub independent: Option<&'static Variable>,
 }
 
 /// Every phase but a step's intermediate update: the instance's own housekeeping and its FMU

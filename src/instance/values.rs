@@ -17,10 +17,15 @@ impl Instance {
         accepts: fn(&Kind) -> bool,
         type_name: &str,
     ) -> Result<&'static Variable, Status> {
-        let visible = self
-            .position(value_reference)
-            .map(|position| &self.model.table.variables[position])
-            .filter(|v| self.scope.exposes(v.value_reference));
+        let independent = self
+            .dialect
+            .independent
+            .filter(|v| v.value_reference == value_reference);
+        let visible = independent.or_else(|| {
+            self.position(value_reference)
+                .map(|position| &self.model.table.variables[position])
+                .filter(|v| self.scope.exposes(v.value_reference))
+        });
         match visible {
             Some(var) if accepts(&var.kind) => Ok(var),
             Some(var) => Err(self.error(&format!(
@@ -95,9 +100,15 @@ impl Instance {
         // evaluated, e.g. at an absurd start time, or a step can leave one in an output). Every
         // reference was found above.
         let values = self.values.as_slice();
-        let value = |vr: u32| {
-            self.position(vr)
-                .map_or(f64::NAN, |position| values[position])
+        let time = self
+            .dialect
+            .independent
+            .map(|v| (v.value_reference, self.time));
+        let value = |vr: u32| match time {
+            Some((independent, t)) if vr == independent => t,
+            _ => self
+                .position(vr)
+                .map_or(f64::NAN, |position| values[position]),
         };
         if let Some(&vr) = value_references.iter().find(|&&vr| !value(vr).is_finite()) {
             let name = self.model.table.variable(vr).map_or("?", |v| v.name);
@@ -145,10 +156,15 @@ impl Instance {
                     self.phase != StepComplete || var.variability == Variability::Tunable
                 }
                 Causality::Output | Causality::Independent => {
+                    let what = if var.causality == Causality::Output {
+                        "an output"
+                    } else {
+                        "the independent variable"
+                    };
                     return self.error(&format!(
-                        "{function}: {} is an output: it can be read, not set",
+                        "{function}: {} is {what}: it can be read, not set",
                         var.name
-                    ))
+                    ));
                 }
             };
             if !writable {
@@ -168,7 +184,10 @@ impl Instance {
             self.outputs_current = false;
         }
         for (i, &vr) in value_references.iter().enumerate() {
-            self.values.set(vr, value_at(i));
+            // Every reference was found above, through the instance's index.
+            if let Some(position) = self.position(vr) {
+                self.values.set_at(position, value_at(i));
+            }
             let running = self.phase == StepComplete;
             if let Some(message) =
                 self.unread_inputs
@@ -181,7 +200,10 @@ impl Instance {
             // held unless told otherwise (FMI 2.0, 4.2.1, leaves this open; holding is what a
             // master that sets no derivative means).
             if self.model.table.interpolates_inputs
-                && self.model.table.variable(vr).map(|v| v.causality) == Some(Causality::Input)
+                && self
+                    .position(vr)
+                    .map(|position| self.model.table.variables[position].causality)
+                    == Some(Causality::Input)
             {
                 self.pending_derivatives.retain(|&(r, _)| r != vr);
                 if let Some(sim) = self.sim.as_mut() {

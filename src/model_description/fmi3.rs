@@ -102,6 +102,16 @@ impl Description<'_> {
         }
     }
 
+    /// The units the FMI 3.0 description names, in the order of the unit table: `s` (time's)
+    /// and every unit of a listed Real.
+    fn units_used3(&self) -> Vec<&'static str> {
+        crate::variables::variable::UNITS
+            .iter()
+            .map(|u| u.name)
+            .filter(|&name| name == "s" || self.uses_unit(name))
+            .collect()
+    }
+
     fn time_variable() -> Variable3<'static> {
         Variable3::Float64 {
             name: TIME_NAME,
@@ -178,8 +188,13 @@ impl Description<'_> {
                 event_mode: false,
             },
             // `time` is in seconds.
-            units: self.unit_definitions(&|name| name == "s" || self.uses_unit(name)),
+            units: self.unit_definitions(&|name| self.units_used3().contains(&name)),
             types: TypeDefinitions3 {
+                units: self
+                    .units_used3()
+                    .into_iter()
+                    .map(|unit| Float64Type { name: unit, unit })
+                    .collect(),
                 types: self
                     .enum_types
                     .iter()

@@ -70,14 +70,27 @@ pub struct CoSimulation3<'a> {
 
 #[derive(Serialize)]
 pub struct TypeDefinitions3<'a> {
+    #[serde(rename = "Float64Type")]
+    pub units: Vec<Float64Type<'a>>,
     #[serde(rename = "Int32Type")]
     pub types: Vec<Int32Type<'a>>,
 }
 
 impl TypeDefinitions3<'_> {
     fn is_empty(&self) -> bool {
-        self.types.is_empty()
+        self.units.is_empty() && self.types.is_empty()
     }
+}
+
+/// A unit's type, named as the unit: Float64 variables name their unit through it, as the
+/// Reference FMUs do, rather than by a `unit` attribute of their own, which importers built on
+/// the `fmi-schema` crate refuse (docs/interoperability.md, "FMI 3.0").
+#[derive(Serialize)]
+pub struct Float64Type<'a> {
+    #[serde(rename = "@name")]
+    pub name: &'a str,
+    #[serde(rename = "@unit")]
+    pub unit: &'a str,
 }
 
 /// A switch's type: an Int32 range whose description numbers the items ("1 split, 2 total").
@@ -121,7 +134,8 @@ pub enum Variable3<'a> {
             skip_serializing_if = "Option::is_none"
         )]
         intermediate_update: Option<bool>,
-        #[serde(rename = "@unit", skip_serializing_if = "Option::is_none")]
+        /// The unit's type ([`Float64Type`]).
+        #[serde(rename = "@declaredType", skip_serializing_if = "Option::is_none")]
         unit: Option<&'a str>,
         #[serde(rename = "@start", skip_serializing_if = "Option::is_none")]
         start: Option<String>,

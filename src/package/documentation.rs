@@ -1,7 +1,9 @@
 //! documentation/index.html: the model's equations and source (hand-written, per model) and its
 //! variables (generated from the same table as modelDescription.xml). A variant's page lists
-//! the variables it keeps, with its start values, and the values it fixes.
+//! the variables it keeps, with its start values, and the values it fixes. An FMI 3.0 FMU's page
+//! opens with what its standard calls the functions the models' text names in FMI 2.0's words.
 
+use super::Standard;
 use crate::models::Model;
 use crate::variables::variable::{Causality, Kind, ModelTable, Variable};
 use crate::variant::Variant;
@@ -95,14 +97,26 @@ fn sections(
     sections
 }
 
-fn html(title: &str, description: &str, body: &str) -> String {
+/// The FMI 3.0 names of what the models' hand-written text calls by FMI 2.0's.
+const FMI3_NOTE: &str = "<p>This is the FMI 3.0 FMU; its FMI 2.0 twin carries the same library. \
+Where the text below names FMI 2.0 functions: Reals are set with <code>fmi3SetFloat64</code>, switches \
+and Integers with <code>fmi3SetInt32</code> (by number); <code>fmi3GetOutputDerivatives</code> gives the \
+output derivatives; FMI 3.0 has no <code>fmi2SetRealInputDerivatives</code>: a master passes an input \
+inside a step through the intermediate-update callback (the inputs marked \
+<code>intermediateUpdate</code>), or the FMU moves it as <code>input_scheme</code> says.</p>\n";
+
+fn html(standard: Standard, title: &str, description: &str, body: &str) -> String {
+    let note = match standard {
+        Standard::Fmi2 => "",
+        Standard::Fmi3 => FMI3_NOTE,
+    };
     format!(
-        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>{title}</title>\n<style>body{{font-family:sans-serif;max-width:50em;margin:auto}}table{{border-collapse:collapse}}td,th{{border:1px solid #ccc;padding:2px 6px;text-align:left}}</style></head>\n<body>\n<h1>{title}</h1>\n<p>{description}</p>\n{body}</body></html>\n",
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>{title}</title>\n<style>body{{font-family:sans-serif;max-width:50em;margin:auto}}table{{border-collapse:collapse}}td,th{{border:1px solid #ccc;padding:2px 6px;text-align:left}}</style></head>\n<body>\n<h1>{title}</h1>\n<p>{description}</p>\n{note}{body}</body></html>\n",
         description = escape(description),
     )
 }
 
-pub fn page(model: &Model) -> String {
+pub fn page(model: &Model, standard: Standard) -> String {
     let table = model.table;
     let variables: Vec<&Variable> = table.variables.iter().collect();
     let body = format!(
@@ -110,12 +124,12 @@ pub fn page(model: &Model) -> String {
         model.documentation,
         sections(table, &variables, &table_start)
     );
-    html(table.model_identifier, table.description, &body)
+    html(standard, table.model_identifier, table.description, &body)
 }
 
 /// A variant's page: what it keeps (start values from the file), what it fixes, then the
 /// model's equations; the file itself is in resources/variant.toml.
-pub fn variant_page(variant: &Variant) -> String {
+pub fn variant_page(variant: &Variant, standard: Standard) -> String {
     let table = variant.model.table;
     let value = |v: &Variable| variant.values.real(v.value_reference);
     let fixed: Vec<&Variable> = variant.fixed().into_iter().map(|(v, _)| v).collect();
@@ -128,12 +142,12 @@ pub fn variant_page(variant: &Variant) -> String {
         fixed = section("Fixed values", "value", &rows(table, fixed.into_iter(), &value)),
         equations = variant.model.documentation,
     );
-    html(&variant.name, &variant.description, &body)
+    html(standard, &variant.name, &variant.description, &body)
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{page, variant_page};
+    use super::{page, variant_page, Standard, FMI3_NOTE};
 
     /// Every model ships a written description, and its page lists every variable.
     #[test]
@@ -144,7 +158,7 @@ mod tests {
                 model.documentation.contains("<h2>Source</h2>"),
                 "{id} has no description"
             );
-            let html = page(model);
+            let html = page(model, Standard::Fmi2);
             for v in model.table.variables {
                 assert!(
                     html.contains(&format!("<code>{}</code>", v.name)),
@@ -160,7 +174,7 @@ mod tests {
     fn a_variant_page_lists_kept_and_fixed_values() {
         let text = "name = \"S\"\nmodel = \"LongitudinalFriction\"\nlaw = \"coulomb\"\nsolver = \"rk4\"\ntunable = [\"vc\"]\noutputs = [\"FT_mean\"]\n[parameters]\nvc = 0.146\nkt = 3e4\n[experiment]\nstart = 0\nstop = 1e-3\nstep = 1e-5\n";
         let variant = crate::variant::parse("s.toml", text).unwrap();
-        let html = variant_page(&variant);
+        let html = variant_page(&variant, Standard::Fmi2);
         assert!(html.contains("<tr><td><code>vc</code></td><td>0.146</td>"));
         assert!(html.contains("<tr><td><code>kt</code></td><td>30000</td>"));
         assert!(html.contains(
@@ -168,5 +182,16 @@ mod tests {
         ));
         assert!(html.contains("<h2>Fixed values</h2>") && html.contains("<code>FT_mean</code>"));
         assert!(!html.contains("<code>FT</code>"));
+    }
+
+    /// The FMI 3.0 page is the FMI 2.0 one with the note on FMI 3.0's names after the
+    /// description.
+    #[test]
+    fn the_fmi3_page_adds_its_note_alone() {
+        for model in crate::models::MODELS {
+            let (fmi2, fmi3) = (page(model, Standard::Fmi2), page(model, Standard::Fmi3));
+            assert!(!fmi2.contains(FMI3_NOTE));
+            assert_eq!(fmi3.replacen(FMI3_NOTE, "", 1), fmi2);
+        }
     }
 }

@@ -214,7 +214,7 @@ pub fn pack_for(
         standard,
         model_identifier,
         xml,
-        documentation: &documentation::page(model),
+        documentation: &documentation::page(model, standard),
         resources: &[],
     };
     write_fmu(&contents, libraries, (model_identifier, false), out_dir)
@@ -246,7 +246,7 @@ pub fn pack_variant_for(
         standard,
         model_identifier: &variant.name,
         xml: &xml,
-        documentation: &documentation::variant_page(variant),
+        documentation: &documentation::variant_page(variant, standard),
         resources: &[(variant::RESOURCE, variant.text.as_bytes())],
     };
     let model = variant.model.table.model_identifier;

@@ -93,7 +93,7 @@ impl Missing {
     /// What the main command prints last: nothing when every platform was built.
     pub fn report(&self) -> Option<String> {
         let command = self.command()?;
-        let mut text = String::from("not built, so the FMUs go without them:\n");
+        let mut text = String::from("platforms not built, so the FMUs go without them:\n");
         for line in &self.platforms {
             text.push_str(&format!("  {line}\n"));
         }
@@ -363,7 +363,7 @@ mod tests {
             "rustup target add x86_64-pc-windows-gnu aarch64-unknown-linux-gnu && sudo apt-get install -y mingw-w64 && (test -d .venv || python3 -m venv .venv) && .venv/bin/pip install cargo-zigbuild ziglang"
         );
         let report = missing.report().unwrap();
-        assert!(report.starts_with("not built"));
+        assert!(report.starts_with("platforms not built"));
         assert!(report.ends_with(&missing.command().unwrap()));
     }
 }

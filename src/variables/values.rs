@@ -67,6 +67,12 @@ impl ValueSet {
         self.values[i] = value;
     }
 
+    /// Stores a value at its variable's position in the table (an index the caller keeps),
+    /// without checks, as [`ValueSet::set`].
+    pub fn set_at(&mut self, position: usize, value: f64) {
+        self.values[position] = value;
+    }
+
     pub fn as_slice(&self) -> &[f64] {
         &self.values
     }

@@ -10,6 +10,8 @@
  *
  * Build: gcc -O2 -o fmu_host fmu_host.c -ldl
  *        x86_64-w64-mingw32-gcc -O2 -o fmu_host.exe fmu_host.c
+ *        aarch64-linux-gnu-gcc -O2 -DPLATFORM='"aarch64-linux"' -o fmu_host_aarch64 fmu_host.c -ldl
+ *        (run with qemu-aarch64 -L /usr/aarch64-linux-gnu)
  * Exit status: 0 when every call returned fmi2OK; 1 when a call returned anything else (the
  * status is printed on stderr, with every message the FMU logged); 2 for a usage or load error.
  */
@@ -26,7 +28,11 @@
 #else
 #include <dlfcn.h>
 #include <limits.h>
+/* An aarch64 build names FMI 3.0's folder (-DPLATFORM='"aarch64-linux"'): FMI 2.0 names no
+ * aarch64 platform, and the aarch64 library is packed into the FMI 3.0 FMUs only. */
+#ifndef PLATFORM
 #define PLATFORM "linux64"
+#endif
 #define EXTENSION ".so"
 #define SEPARATOR "/"
 #endif

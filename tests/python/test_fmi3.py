@@ -7,8 +7,7 @@
 - A step that cannot be completed returns fmi3Discard with lastSuccessfulTime where the instance
   is, which is where the step started.
 - Variable communication steps and output derivatives give what the FMI 2.0 FMU gives.
-- Switches are Enumerations, set with fmi3SetInt64; the messages name FMI 3.0's functions and
-  states.
+- Switches are Int32, as in FMI 2.0; the messages name FMI 3.0's functions and states.
 - An importer's intermediate-update callback is called at the end of each internal step inside a
   communication step; an input it sets there drives the model from that time on, exactly as a
   communication point there would.
@@ -60,6 +59,14 @@ def test_every_output_equals_the_fmi2_fmus(name, variant):
         assert abs(got - want).max() <= 1e-12 * scale, f"{name}.{output}"
 
 
+def item(md, switch, name):
+    """The number of a switch's item, from the description that lists them ("(1 a, 2 b)")."""
+    description = next(v.description for v in md.modelVariables if v.name == switch)
+    listed = description[description.rindex("(") + 1:description.rindex(")")]
+    return next(int(number) for number, label in (entry.split(" ", 1) for entry in listed.split(", "))
+                if label == name)
+
+
 class Slave3:
     """An FMU3Slave of an FMI 3.0 FMU of ours, with its log captured."""
 
@@ -82,7 +89,7 @@ class Slave3:
 
     def initialize(self, **integers):
         for name, value in integers.items():
-            self.fmu.setInt64([self.vr[name]], [value])
+            self.fmu.setInt32([self.vr[name]], [value])
         self.fmu.enterInitializationMode(startTime=0.0)
         self.fmu.exitInitializationMode()
 
@@ -165,6 +172,7 @@ def test_variable_steps_and_output_derivatives_are_the_fmi2_fmus(name):
         assert three.do_step(t, h) == (0, t + h)
         t += h
         assert three.fmu.getFloat64(outputs) == two.fmu.getReal(outputs)
+        assert three.fmu.getFloat64([three.vr["time"]]) == [t]
     if md.coSimulation.maxOutputDerivativeOrder:
         reals = [v.valueReference for v in md.modelVariables if v.causality == "output"]
         assert three.fmu.getOutputDerivatives(reals, [1] * len(reals)) == \
@@ -173,17 +181,23 @@ def test_variable_steps_and_output_derivatives_are_the_fmi2_fmus(name):
     three.free()
 
 
-def test_switches_are_set_with_int64_and_refused_as_int32():
+def test_switches_are_int32_as_in_fmi2_and_refused_as_int64():
+    """Switches are Int32 with their items in the description (docs/interoperability.md, FMI
+    3.0: why not Enumerations); an Int64 setter names what it reached."""
     slave = Slave3("TransverseFriction")
     solver = slave.vr["solver"]
-    items = {item.name: int(item.value) for item in
-             next(t for t in slave.md.typeDefinitions if t.name == slave.md.modelVariables[
-                 [v.valueReference for v in slave.md.modelVariables].index(solver)].declaredType.name).items}
-    slave.fmu.setInt64([solver], [items["dop853"]])
-    assert slave.fmu.getInt64([solver]) == [items["dop853"]]
+    variable = next(v for v in slave.md.modelVariables if v.name == "solver")
+    assert variable.type == "Int32"
+    assert "6 dop853" in variable.description
+    slave.fmu.setInt32([solver], [6])
+    slave.fmu.enterInitializationMode(startTime=0.0)
+    assert slave.fmu.getInt32([solver]) == [6]
     with pytest.raises(FMICallException):
-        slave.fmu.setInt32([solver], [items["dop853"]])
-    assert "not a Int32 variable" in slave.messages[-1][1]
+        slave.fmu.setFloat64([slave.vr["time"]], [1.0])
+    assert "time is the independent variable: it can be read, not set" in slave.messages[-1][1]
+    with pytest.raises(FMICallException):
+        slave.fmu.setInt64([solver], [6])
+    assert "fmi3SetInt64: value reference 2 is solver, not a Int64 variable" in slave.messages[-1][1]
     slave.fmu.freeInstance()
 
 
@@ -226,8 +240,8 @@ def test_ecos_runs_the_fmi3_fmus_as_fmpy_runs_the_fmi2_ones(model, tmp_path):
 
 
 def test_inputs_set_at_the_internal_steps_drive_the_model_from_there():
-    """LongitudinalFriction driven through vr_in, the base's velocity vc + va cos(2 pi f t) given by
-    the importer. With an intermediate-update callback that sets vr_in at every internal step, the
+    """LongitudinalFriction (dopri5) driven through vr_in, the base's velocity vc + va cos(2 pi f t)
+    given by the importer, at communication steps of 3.7 vibration periods. With an intermediate-update callback that sets vr_in at every internal step, the
     run equals (to 1e-12 of FT's range) one without the callback whose communication points are
     the callback's times as well, setting vr_in there: the FMU calls back inside the step, at its
     own steps, and takes the input from that time on. Outputs read in the callback move."""
@@ -239,9 +253,9 @@ def test_inputs_set_at_the_internal_steps_drive_the_model_from_there():
         slave.fmu.setFloat64([slave.vr["vr_in"]], [velocity(time)])
 
     def start(instance):
-        items = {i.name: int(i.value) for i in next(t for t in instance.md.typeDefinitions
-                                                    if t.name == "VelocitySource").items}
-        instance.fmu.setInt64([instance.vr["velocity_source"]], [items["input"]])
+        source = item(instance.md, "velocity_source", "input")
+        instance.fmu.setInt32([instance.vr["velocity_source"]], [source])
+        instance.fmu.setInt32([instance.vr["solver"]], [item(instance.md, "solver", "dopri5")])
         instance.fmu.enterInitializationMode(startTime=0.0)
         instance.fmu.setFloat64([instance.vr["vr_in"]], [velocity(0.0)])
         instance.fmu.exitInitializationMode()
@@ -254,20 +268,24 @@ def test_inputs_set_at_the_internal_steps_drive_the_model_from_there():
     def velocity(t):
         return vc + va * np.cos(2 * np.pi * f * t)
 
-    h = 0.37 / f
+    h = 3.7 / f
     slave = Slave3("LongitudinalFriction", intermediate_update=update)
     start(slave)
     points, outputs = [0.0], []
-    for i in range(40):
+    for i in range(20):
         t = i * h
         slave.fmu.setFloat64([slave.vr["vr_in"]], [velocity(t)])
         before = len(seen)
-        assert slave.do_step(t, h) == (0, t + h), slave.messages[-1:]
+        # The input scheme's watch for an unstable coupling counts each internal step as a
+        # communication step and may warn here (docs/interoperability.md, "What the FMI 3.0
+        # functions do"); nothing else may.
+        status, last = slave.do_step(t, h)
+        assert last == t + h and (status == 0 or "input_scheme" in slave.messages[-1][1]), slave.messages[-1:]
         inside = [time for time, _ in seen[before:]]
         assert all(t < time < t + h for time in inside)
         points += inside + [t + h]
         outputs.append(slave.fmu.getFloat64([slave.vr["FT"]])[0])
-    assert len(seen) > 40, "no internal step inside the communication steps"
+    assert len(seen) > 100, "few internal steps inside the communication steps"
     assert np.ptp([ft for _, ft in seen]) > 0
     slave.free()
 
@@ -276,8 +294,8 @@ def test_inputs_set_at_the_internal_steps_drive_the_model_from_there():
     want = []
     for t, end in zip(points, points[1:]):
         plain.fmu.setFloat64([plain.vr["vr_in"]], [velocity(t)])
-        assert plain.do_step(t, end - t)[0] == 0
-        if any(abs(end - (i + 1) * h) < 1e-15 for i in range(40)):
+        assert plain.do_step(t, end - t)[0] <= 1
+        if any(abs(end - (i + 1) * h) < 1e-15 for i in range(20)):
             want.append(plain.fmu.getFloat64([plain.vr["FT"]])[0])
     plain.free()
     assert len(want) == len(outputs)
