@@ -1027,12 +1027,7 @@ fn every_variable_goes_through_the_type_its_model_description_declares() {
             Status::Ok
         );
         let mut writer = ImportedInstance::new(id, "writer").unwrap();
-        // FMI 3.0 requires the independent variable (time) to be declared; reading it is not
-        // what this test is about.
-        let declared_variables = fmi3_description::variables(id)
-            .into_iter()
-            .filter(|v| v.causality != "independent");
-        for declared in declared_variables {
+        for declared in fmi3_description::variables(id) {
             let vr = [declared.value_reference];
             for t in types {
                 let expected = if t == declared.value_type {
