@@ -15,6 +15,8 @@
 //! They stay memory-safe because the FMU validates every pointer against the lists of instances
 //! and states it handed out; that validation is what such calls test.
 //!
+//! [`fmi3`] is the same for the FMI 3.0 functions.
+//!
 //! Built only for Linux on x86-64 and aarch64: see the logger (`record`) for why.
 #![cfg(all(
     target_os = "linux",
@@ -26,6 +28,8 @@ use crate::fmi2::ffi::{self, CallbackFunctions, CallbackLogger, FmuState, Status
 use crate::instance::library::Binary;
 use std::ffi::{c_char, c_int, c_void, CStr, CString};
 use std::sync::{Mutex, MutexGuard};
+
+pub mod fmi3;
 
 /// One message the FMU sent to its logger.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -290,6 +294,11 @@ impl ImportedInstance {
 
     fn c(&self) -> ffi::Component {
         self.component as ffi::Component
+    }
+
+    /// The handle fmi2Instantiate returned; after a free, an address that is no instance's.
+    pub fn handle(&self) -> usize {
+        self.component
     }
 
     /// The messages logged so far, oldest first.
@@ -771,14 +780,27 @@ pub fn types_platform() -> String {
 
 /// fmi2FreeInstance(NULL), which the FMU must ignore.
 pub fn free_null_instance() {
-    // SAFETY: NULL is never a live instance.
-    unsafe { fmi2FreeInstance(std::ptr::null_mut()) }
+    free_foreign_component(0);
+}
+
+/// fmi2FreeInstance on `component`, which is no live FMI 2.0 instance (NULL, made up, an FMI 3.0
+/// instance's): the FMU must ignore it.
+pub fn free_foreign_component(component: usize) {
+    // SAFETY: the handle is looked up by the FMU, never dereferenced.
+    unsafe { fmi2FreeInstance(component as ffi::Component) }
 }
 
 /// Calls every function that takes an instance with instance = NULL; returns each function's name
 /// and status (nothing can be logged: without an instance there is no logger).
 pub fn calls_on_null_component() -> Vec<(&'static str, Status)> {
-    let c: ffi::Component = std::ptr::null_mut();
+    calls_on_component(0)
+}
+
+/// Calls every function that takes an instance, except fmi2FreeInstance, on `component`: each
+/// function's name and status. Meant for handles that are no live FMI 2.0 instance (NULL, made
+/// up, an FMI 3.0 instance's), which the FMU must refuse before touching anything else.
+pub fn calls_on_component(component: usize) -> Vec<(&'static str, Status)> {
+    let c = component as ffi::Component;
     let vr = [0_u32];
     let mut real = [0.0];
     let mut int = [0];
@@ -788,8 +810,8 @@ pub fn calls_on_null_component() -> Vec<(&'static str, Status)> {
     let mut bytes = [0_u8; 8];
     let mut string: ffi::FmiString = std::ptr::null();
     let mut strings = [std::ptr::null::<c_char>()];
-    // SAFETY: every pointer is valid for the length passed; the instance is NULL, which the FMU
-    // must refuse before touching anything else.
+    // SAFETY: every pointer is valid for the length passed; the FMU looks the handle up and must
+    // refuse it before touching anything else.
     unsafe {
         vec![
             (

@@ -2,7 +2,8 @@
 //! fmi2DoStep and fmi2GetReal (outputs), for every model and every solver, every variant's
 //! trimmed FMU, inputs moving linearly over a step, and a master that changes its step size,
 //! driven through the exported fmi2* functions in-process (src/importer.rs) with a
-//! per-thread counting allocator around them.
+//! per-thread counting allocator around them; and the same master's fmi3SetFloat64, fmi3DoStep
+//! and fmi3GetFloat64 through the FMI 3.0 boundary, for every model and solver.
 //!
 //! Oracle: the allocator's count; zero is the contract (src/solve/mod.rs: integrators keep their
 //! scratch space inline). The first steps run before counting, so nothing lazily set up on the
@@ -13,12 +14,15 @@
 ))]
 
 use friction_fmu::fmi2::ffi::Status;
-use friction_fmu::importer::{ImportedInstance, Instantiation};
+use friction_fmu::fmi3::ffi::Status as Status3;
+use friction_fmu::importer::{fmi3, ImportedInstance, Instantiation};
 use friction_fmu::models::MODELS;
 use friction_fmu::models::{drive::table as drive, transverse::table as transverse};
 use friction_fmu::variables::variable::{Causality, Kind, ModelTable, Variable};
 use friction_fmu::variant;
 use std::path::Path;
+
+mod fmi3_description;
 
 /// The communication step of the FMI-overhead measurement (examples/fmi_overhead.rs).
 const STEP: f64 = 1e-5;
@@ -279,4 +283,97 @@ fn every_variant_step_does_not_allocate() {
     }
     std::fs::remove_dir_all(&root).unwrap();
     assert!(files.len() >= 14, "only {} variants", files.len());
+}
+
+/// The same master through the FMI 3.0 boundary: fmi3SetFloat64 (inputs), fmi3DoStep and
+/// fmi3GetFloat64 (outputs), 10 rounds uncounted, then ROUNDS counted.
+fn assert_fmi3_rounds_do_not_allocate(
+    name: &str,
+    fmu: &mut fmi3::ImportedInstance,
+    outputs: &[u32],
+    inputs: &[(u32, f64)],
+) {
+    let (inputs, values): (Vec<u32>, Vec<f64>) = inputs.iter().copied().unzip();
+    let mut out = vec![0.0; outputs.len()];
+    let mut t = 0.0;
+    let mut round = |fmu: &mut fmi3::ImportedInstance, t: &mut f64| {
+        let set = fmu.set_float64(&inputs, &values);
+        let (step, outcome) = fmu.do_step(*t, STEP, true);
+        let get = fmu.get_float64_into(outputs, &mut out);
+        *t += STEP;
+        let ended_there = outcome.last_successful_time == *t;
+        (set.max(step).max(get), ended_there)
+    };
+    for _ in 0..10 {
+        let (status, _) = round(fmu, &mut t);
+        assert_eq!(status, Status3::Ok, "{name}: {:?}", fmu.messages());
+    }
+    let mut results = [(Status3::Ok, true); ROUNDS];
+    let info = allocation_counter::measure(|| {
+        for result in results.iter_mut() {
+            *result = round(fmu, &mut t);
+        }
+    });
+    assert!(
+        results.iter().all(|r| *r == (Status3::Ok, true)),
+        "{name}: {results:?} {:?}",
+        fmu.messages()
+    );
+    assert_eq!(
+        info.count_total, 0,
+        "{name}: {} allocations in {ROUNDS} rounds of an FMI 3.0 master's calls",
+        info.count_total
+    );
+    let mut values = vec![0.0; outputs.len()];
+    assert_eq!(fmu.get_float64_into(outputs, &mut values), Status3::Ok);
+    assert!(values.iter().all(|v| v.is_finite()), "{name}: {values:?}");
+}
+
+/// fmi3DoStep and fmi3GetFloat64 at a communication step allocate nothing, for every model and
+/// every solver.
+#[test]
+fn an_fmi3_communication_step_does_not_allocate() {
+    let mut checked = 0;
+    for model in MODELS {
+        let table = model.table;
+        let solver = table.by_name("solver").expect("every model has `solver`");
+        let Kind::Switch { type_name, .. } = solver.kind else {
+            panic!("{}: `solver` is not an enumeration", table.model_identifier);
+        };
+        let items = table.enum_type(type_name).expect("solver type").items;
+        // Set with the setter of the type the FMI 3.0 modelDescription.xml declares it with.
+        let solver_type = fmi3_description::variables(table.model_identifier)
+            .into_iter()
+            .find(|v| v.name == "solver")
+            .expect("`solver` in the FMI 3.0 modelDescription.xml")
+            .value_type;
+        let outputs = real_outputs(&table.variables.iter().collect::<Vec<_>>());
+        let inputs: Vec<(u32, f64)> = table
+            .variables
+            .iter()
+            .filter(|v| v.causality == Causality::Input)
+            .filter(|v| !table.input_switches.iter().any(|s| s.input == v.name))
+            .map(|v| (v.value_reference, 0.0))
+            .collect();
+        for (value, (item, _)) in (1..).zip(items.iter()) {
+            let name = format!("{}-{item} (FMI 3.0)", table.model_identifier);
+            let mut fmu = fmi3::ImportedInstance::new(table.model_identifier, &name)
+                .unwrap_or_else(|log| panic!("{name}: instantiate: {log:?}"));
+            assert_eq!(
+                fmu.set(solver_type, &[solver.value_reference], &[f64::from(value)]),
+                Status3::Ok,
+                "{name}: {:?}",
+                fmu.messages()
+            );
+            assert_eq!(
+                fmu.initialize(),
+                Status3::Ok,
+                "{name}: {:?}",
+                fmu.messages()
+            );
+            assert_fmi3_rounds_do_not_allocate(&name, &mut fmu, &outputs, &inputs);
+            checked += 1;
+        }
+    }
+    assert!(checked >= 10, "checked only {checked} solvers");
 }
