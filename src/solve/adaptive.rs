@@ -2,8 +2,9 @@
 //! of either (its tolerance, the step it would try next, a stiffness warning, an integration)
 //! is answered here once, so that a model's own solver enum adds only its own methods.
 
-use super::dopri::{Dopri5, Switching};
+use super::dopri::Dopri5;
 use super::radau::Radau5;
+use super::switching::Switching;
 use super::{Integrator, Ode, Work};
 
 #[derive(Clone, Debug, PartialEq)]

@@ -12,9 +12,9 @@
 //! retaken to end on it: no kink is foreseen from the step before, so where kinks come every
 //! few steps (the split law) dopri5 is cheaper.
 
-use super::dopri::{crossed, Smooth, Switching, MAX_SWITCHES};
 use super::narrow::{Verdict, Watch};
 use super::stiffness::StiffnessTest;
+use super::switching::{crossed, Smooth, Switching, MAX_SWITCHES};
 use super::{Integrator, Ode, Work, MAX_DIM};
 
 /// The nodes: the twelve stages of a step, the end (where the next step's first stage is

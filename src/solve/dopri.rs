@@ -20,61 +20,8 @@ pub use ahead::{Carry, StepAhead, CARRY_SAVED, SAVED_LEN as STEP_AHEAD_SAVED};
 
 use super::narrow::{Narrow, Verdict, Watch};
 use super::stiffness::StiffnessTest;
+use super::switching::{crossed, Smooth, Switching, MAX_SWITCHES};
 use super::{Integrator, Ode, Work, MAX_DIM};
-
-/// The most switching functions an ODE may report.
-pub const MAX_SWITCHES: usize = 12;
-
-/// An ODE whose right-hand side is smooth except where one of a few functions of (t, y) is zero.
-pub trait Switching: Ode {
-    /// Writes the switching functions into `out`; returns how many there are. They read the
-    /// coupled states alone ([`Ode::coupled`]): the solvers locate kinks on an interpolant of
-    /// those.
-    fn switches(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize;
-
-    /// Switching function `i` alone, as [`Switching::switches`] writes it; an ODE with many
-    /// switches gives it for less, since a kink's root finder asks for one at a time.
-    fn switch(&self, t: f64, y: &[f64], i: usize) -> f64 {
-        let mut out = [0.0; MAX_SWITCHES];
-        self.switches(t, y, &mut out);
-        out[i]
-    }
-
-    /// The switching functions, and the rate sigma >= 0 at which the components
-    /// [`Switching::decaying`] relax now (their right-hand side holds a term -sigma y_j).
-    fn switches_and_decay(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> (usize, f64) {
-        (self.switches(t, y, out), 0.0)
-    }
-
-    /// The components (at most [`MAX_DECAYING`]) whose linear decay dopri5 takes exactly
-    /// within each step, at a rate frozen over it (Lawson's integrating factor): that of the
-    /// step's start, or of its middle ([`Switching::decay_follows_trend`]).
-    fn decaying(&self) -> &[usize] {
-        &[]
-    }
-
-    /// Whether the right-hand side stays C1 where switch `i` changes sign (only its second
-    /// derivative jumps): [`Dopri5::integrate_to_kink`] then lets a step across it stand when
-    /// the step passes its error test, and stops a little past the kink instead of retaking the
-    /// step to end on it.
-    fn smooth_across(&self, _i: usize) -> bool {
-        false
-    }
-
-    /// Whether the decay rate's trend over the last step foretells it over the next (it varies
-    /// smoothly along the solution between the switches): dopri5 then freezes the rate at the
-    /// middle of each step, extrapolated, instead of at its start.
-    fn decay_follows_trend(&self) -> bool {
-        false
-    }
-
-    /// The coordinate of a narrow feature of the right-hand side ([`crate::solve::narrow`]),
-    /// from the switching functions' values at a point: steps that pass through its band are
-    /// held short enough for the stages to sample it. None: no such feature.
-    fn narrow(&self, _switches: &[f64; MAX_SWITCHES]) -> Option<Narrow> {
-        None
-    }
-}
 
 /// The most components a step may integrate with an integrating factor.
 pub const MAX_DECAYING: usize = 2;
@@ -120,27 +67,6 @@ const MAX_DECAY_PER_STEP: f64 = 30.0;
 /// starts on the kink of the slip |v|): y - c then loses the digits the tolerance asks for (scene
 /// T, total law at va 12 mm/s: FFx_mean off by up to 1.4e-4 at rtol 1e-8 to 1e-13).
 const MIN_DECAY_PER_STEP: f64 = 1e-3;
-
-/// No switching functions: plain Dormand-Prince.
-pub(super) struct Smooth<'a>(pub(super) &'a dyn Ode);
-
-impl Ode for Smooth<'_> {
-    fn dim(&self) -> usize {
-        self.0.dim()
-    }
-    fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
-        self.0.rhs(t, y, dydt)
-    }
-    fn coupled(&self) -> usize {
-        self.0.coupled()
-    }
-}
-
-impl Switching for Smooth<'_> {
-    fn switches(&self, _t: f64, _y: &[f64], _out: &mut [f64; MAX_SWITCHES]) -> usize {
-        0
-    }
-}
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dopri5 {
@@ -430,12 +356,6 @@ fn stage_factors(x: f64) -> [f64; 7] {
     let q80 = q72 * q8;
     let q90 = q72 * q18;
     [1.0, q18, q27, q72, q80, q90, q90]
-}
-
-/// Has the switching function gone from `old` to `new` across zero? An old value of exactly 0
-/// (the step started on the switch) does not count.
-pub(super) fn crossed(old: f64, new: f64) -> bool {
-    old != 0.0 && (new == 0.0 || (new > 0.0) != (old > 0.0))
 }
 
 /// A run that stops at the end of the first accepted step reaching `past`, holding the step

@@ -17,6 +17,7 @@ pub mod rk4;
 pub mod root;
 pub mod shooting;
 pub mod stiffness;
+pub mod switching;
 #[cfg(test)]
 mod test_odes;
 

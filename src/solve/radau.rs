@@ -20,8 +20,8 @@
 //! the extra filtered re-evaluation after a rejection.
 
 use super::dense::{lu_factor, lu_solve};
-use super::dopri::{Switching, MAX_SWITCHES};
 use super::narrow::{Verdict, Watch};
+use super::switching::{Switching, MAX_SWITCHES};
 use super::{Integrator, Ode, Work, MAX_DIM};
 
 const STAGES: usize = 3;

@@ -7,9 +7,10 @@ use super::Equations;
 use crate::friction::regularized::Regularized;
 use crate::models::switch::OscillatorSolver;
 use crate::solve::adaptive::Adaptive;
-use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
+use crate::solve::dopri::Dopri5;
 use crate::solve::radau::{Radau5, StepPolynomial};
 use crate::solve::rk4::Rk4;
+use crate::solve::switching::{Switching, MAX_SWITCHES};
 use crate::solve::{Integrator, Work, MAX_DIM};
 
 #[derive(Clone, Debug, PartialEq)]
