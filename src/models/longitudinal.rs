@@ -33,9 +33,11 @@ use super::switch::{
 use super::{require_passive, require_positive, resolved_energy, Scope, Simulation};
 use crate::friction::{coulomb, dahl::Dahl, lugre::LuGre, sgn};
 use crate::models::longitudinal::table::vr;
-use crate::solve::adaptive::Adaptive;
+use crate::solve::method::Method;
 use crate::solve::phase::{cos_turns, turns};
+use crate::solve::rk4::Rk4;
 use crate::solve::shooting;
+use crate::solve::stepping::Stepping;
 use crate::solve::{within_step_budget, Work};
 use crate::variables::values::ValueSet;
 use closed_form::Sliding;
@@ -586,7 +588,7 @@ impl Longitudinal {
     /// saturation, `rtol FC/kt` in z, where the rate's slope is still bounded.
     fn saturation(&self, law: &Dahl, t0: f64, t1: f64) -> Option<(f64, f64)> {
         let s = sgn(self.sliding_direction(self.velocity_at(0.5 * (t0 + t1))));
-        let slack = self.solver.adaptive().map(Adaptive::rtol).unwrap_or(0.0);
+        let slack = self.solver.ode_tolerance().unwrap_or(0.0);
         let distance = law.distance_to_saturation(self.z, s, slack);
         if !distance.is_finite() || s == 0.0 {
             return None;
@@ -636,9 +638,9 @@ impl Longitudinal {
         // a period's boundary, say): one explicit step, as the adaptive solvers took there when
         // they counted absolute time (counted from the step's start, they would take the
         // interval for a real one and refine it).
-        let mut round_off = Solver::Rk4 {
+        let mut round_off = Solver::General(Method::Rk4(Rk4 {
             h_max: f64::INFINITY,
-        };
+        }));
         let solver = if super::within_round_off(self.t + t0, self.t + t_ode) {
             &mut round_off
         } else {
@@ -835,9 +837,9 @@ impl Simulation for Longitudinal {
             _ => require_passive(
                 (self.dissipated_energy(), self.stored_energy()),
                 1e-6,
-                self.solver.adaptive().map_or(0.0, |a| {
-                    resolved_energy(a.rtol(), self.fc, self.stiffness())
-                }),
+                self.solver
+                    .ode_tolerance()
+                    .map_or(0.0, |rtol| resolved_energy(rtol, self.fc, self.stiffness())),
                 t_end,
                 match self.solver {
                     Solver::Exponential | Solver::ClosedForm(_) => {
@@ -875,8 +877,13 @@ impl Simulation for Longitudinal {
         if let Some(unstable) = unstable.or_else(|| load.instability("FN_in", self.input_scheme)) {
             return Some(unstable);
         }
-        let t = self.solver.adaptive_mut()?.stiff_since()?;
-        Some(super::stiff_warning(t, "dopri5", "radau5 or exponential"))
+        let solver = self.solver.general_mut()?;
+        let t = solver.stiff_since()?;
+        Some(super::stiff_warning(
+            t,
+            solver.name(),
+            "radau5 or exponential",
+        ))
     }
 
     fn reading_period(&self) -> Option<(f64, f64)> {

@@ -32,9 +32,10 @@ use super::{require_finite, require_non_negative, require_positive, Scope, Simul
 use crate::friction::regularized::{stiction_excess, Regularized};
 use crate::friction::sgn;
 use crate::models::oscillator::table::{vr, TABLE};
-use crate::solve::adaptive::Adaptive;
 use crate::solve::dopri::Dopri5;
+use crate::solve::method::Method;
 use crate::solve::radau::StepPolynomial;
+use crate::solve::stepping::Stepping;
 use crate::solve::{shooting, within_step_budget, Ode, Work};
 use crate::variables::values::ValueSet;
 use exact::{Event, Mode, State, Switch};
@@ -403,7 +404,7 @@ impl Oscillator {
         };
         let looks_ahead = matches!(
             &core,
-            Core::Regularized(equations, Solver::Adaptive(Adaptive::Radau5(_)))
+            Core::Regularized(equations, Solver::General(Method::Radau5(_)))
                 if !equations.plant.input
         );
         Ok(Oscillator {
@@ -493,7 +494,7 @@ impl Oscillator {
                     } else {
                         t0 + self.max_substep
                     };
-                    if let Solver::Rk4(_) = solver {
+                    if let Solver::General(Method::Rk4(_)) = solver {
                         equations.require_rk4_stable(t1 - t0)?;
                     }
                     let piecewise = matches!(solver, Solver::Piecewise(_));
@@ -611,7 +612,7 @@ impl Oscillator {
     /// where it may not, or its last step does not hold `t_end` (a rejection or a kink cut it),
     /// or its polynomial is not within the tolerance.
     fn look_ahead(&mut self, t_end: f64, boundary: f64, at_start: &Work) -> Result<bool, String> {
-        let Core::Regularized(_, Solver::Adaptive(Adaptive::Radau5(radau))) = &mut self.core else {
+        let Core::Regularized(_, Solver::General(Method::Radau5(radau))) = &mut self.core else {
             return Ok(false);
         };
         let hints = (radau.h_next, radau.h_proposed);
@@ -627,8 +628,7 @@ impl Oscillator {
         let before = self.state;
         let mut step = StepPolynomial::NONE;
         let largest = self.advance(end, None, at_start, Some(&mut step))?;
-        let Core::Regularized(equations, Solver::Adaptive(Adaptive::Radau5(radau))) =
-            &mut self.core
+        let Core::Regularized(equations, Solver::General(Method::Radau5(radau))) = &mut self.core
         else {
             return Ok(false);
         };
@@ -904,7 +904,7 @@ impl Simulation for Oscillator {
         };
         let name = match solver {
             Solver::Piecewise(_) => "piecewise (its dopri5 inside the band)",
-            _ => "dopri5",
+            Solver::General(m) => m.name(),
         };
         let t = solver.stiff_since()?;
         Some(super::stiff_warning(t, name, "radau5"))
@@ -934,7 +934,7 @@ impl Simulation for Oscillator {
             self.state.dissipated,
         ]);
         let proposed = match &self.core {
-            Core::Regularized(_, Solver::Adaptive(Adaptive::Radau5(radau))) => radau.h_proposed,
+            Core::Regularized(_, Solver::General(Method::Radau5(radau))) => radau.h_proposed,
             _ => 0.0,
         };
         out.extend_from_slice(&[proposed, self.ahead_limit]);
@@ -986,7 +986,7 @@ impl Simulation for Oscillator {
                 self.amplitude.last = state[7];
                 if let Core::Regularized(_, solver) = &mut self.core {
                     solver.set_step_hint(state[8]);
-                    if let Solver::Adaptive(Adaptive::Radau5(radau)) = solver {
+                    if let Solver::General(Method::Radau5(radau)) = solver {
                         radau.h_proposed = proposed;
                     }
                 }

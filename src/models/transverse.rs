@@ -32,14 +32,15 @@ use super::{
 };
 use crate::friction::lugre2d::{radial_rates, Contact, LuGre2d, SlipLaw};
 use crate::models::transverse::table::vr;
-use crate::solve::adaptive::Adaptive;
 use crate::solve::dop853::Dop853;
 use crate::solve::dopri::Dopri5;
+use crate::solve::method::Method;
 use crate::solve::narrow::Narrow;
 use crate::solve::phase::{cos_turns, turns};
 use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
 use crate::solve::shooting::{self, NoOrbit};
+use crate::solve::stepping::Stepping;
 use crate::solve::switching::{Switching, MAX_SWITCHES};
 use crate::solve::{within_step_budget, Integrator, Ode, Work, MAX_DIM};
 use crate::variables::values::ValueSet;
@@ -102,25 +103,14 @@ const DOPRI5_FINE_BAND_RTOL: f64 = 1e-7;
 /// (docs/performance.md, "Measurements behind the code").
 const RADAU5_FINE_BAND_RTOL: f64 = 1e-7;
 
-/// The points inside the Stribeck band where `solver` ends steps: set by the tolerance for the
-/// adaptive solvers, none for the others.
-fn band_points(solver: &Solver) -> &'static [f64] {
-    match solver {
-        Solver::Adaptive(Adaptive::Dopri5(Dopri5 { rtol, .. }))
-        | Solver::Dop853(Dop853 { rtol, .. })
-            if *rtol <= DOPRI5_FINE_BAND_RTOL =>
-        {
-            &BAND_POINTS_FINE
-        }
-        Solver::Adaptive(Adaptive::Dopri5(Dopri5 { rtol, .. }))
-        | Solver::Dop853(Dop853 { rtol, .. })
-            if *rtol <= DOPRI5_COARSE_BAND_RTOL =>
-        {
-            &BAND_POINTS_COARSE
-        }
-        Solver::Adaptive(Adaptive::Radau5(r)) if r.rtol <= RADAU5_FINE_BAND_RTOL => {
-            &BAND_POINTS_FINE
-        }
+/// The points inside the Stribeck band where the solver `name` ends steps at the tolerance
+/// `rtol`: set by the tolerance for the adaptive solvers, none for the others.
+fn band_points(name: TransverseSolver, rtol: f64) -> &'static [f64] {
+    use TransverseSolver::{Dop853, Dopri5, Radau5};
+    match name {
+        Dopri5 | Dop853 if rtol <= DOPRI5_FINE_BAND_RTOL => &BAND_POINTS_FINE,
+        Dopri5 | Dop853 if rtol <= DOPRI5_COARSE_BAND_RTOL => &BAND_POINTS_COARSE,
+        Radau5 if rtol <= RADAU5_FINE_BAND_RTOL => &BAND_POINTS_FINE,
         _ => &[],
     }
 }
@@ -444,11 +434,10 @@ impl Equations<'_> {
     }
 }
 
+/// A general solver on the equations, or one of the scene's own schemes.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Solver {
-    Adaptive(Adaptive),
-    Dop853(Dop853),
-    Rk4 { steps_per_period: u32 },
+    General(Method),
     TwoPhase(two_phase::TwoPhase),
     Exponential(exponential::Exponential),
 }
@@ -457,9 +446,8 @@ impl Solver {
     /// The relative tolerance of an adaptive solver.
     fn rtol(&self) -> Option<f64> {
         match self {
-            Solver::Adaptive(a) => Some(a.rtol()),
-            Solver::Dop853(d) => Some(d.rtol),
-            Solver::Rk4 { .. } | Solver::TwoPhase(_) | Solver::Exponential(_) => None,
+            Solver::General(m) => m.tolerance(),
+            Solver::TwoPhase(_) | Solver::Exponential(_) => None,
         }
     }
 }
@@ -475,6 +463,8 @@ pub struct Transverse {
     pub p: Params,
     pub drive: Drive,
     pub solver: Solver,
+    /// The points inside the Stribeck band where the solver ends steps ([`band_points`]).
+    band_points: &'static [f64],
     /// Coulomb force FC = mu m g, the scale of the outputs.
     pub fc: f64,
     start_time: f64,
@@ -736,9 +726,9 @@ impl Transverse {
         let name = TransverseSolver::read(values, vr::SOLVER)?;
         let trim = Trim::of(scope, values, name);
         let solver = match name {
-            TransverseSolver::Rk4 => Solver::Rk4 {
-                steps_per_period: steps,
-            },
+            TransverseSolver::Rk4 => Solver::General(Method::Rk4(Rk4 {
+                h_max: 1.0 / (f * f64::from(steps)),
+            })),
             TransverseSolver::TwoPhase => {
                 Solver::TwoPhase(two_phase::TwoPhase::new(&p, start_time, &y, steps))
             }
@@ -756,19 +746,15 @@ impl Transverse {
                     scale[VY] = f64::INFINITY;
                     scale[ZY] = f64::INFINITY;
                 }
-                if name == TransverseSolver::Radau5 {
+                Solver::General(if name == TransverseSolver::Radau5 {
                     let mut radau = Radau5::new(rtol, rtol, 0.05 / f);
                     radau.atol_scale = scale;
-                    Solver::Adaptive(Adaptive::Radau5(radau))
+                    Method::Radau5(radau)
                 } else if name == TransverseSolver::Dop853 {
-                    Solver::Dop853(Dop853::new(rtol, scale.map(|s| rtol * s), 0.05 / f))
+                    Method::Dop853(Dop853::new(rtol, scale.map(|s| rtol * s), 0.05 / f))
                 } else {
-                    Solver::Adaptive(Adaptive::Dopri5(Dopri5::new(
-                        rtol,
-                        scale.map(|s| rtol * s),
-                        0.05 / f,
-                    )))
-                }
+                    Method::Dopri5(Dopri5::new(rtol, scale.map(|s| rtol * s), 0.05 / f))
+                })
             }
         };
 
@@ -776,6 +762,7 @@ impl Transverse {
             p,
             drive,
             solver,
+            band_points: band_points(name, rtol),
             fc,
             start_time,
             t: start_time,
@@ -891,7 +878,7 @@ impl Transverse {
         // the interval for a real one and refine it).
         let round_off = super::within_round_off(start, end);
         self.y[Q] = 0.0;
-        let band_points = band_points(&self.solver);
+        let band_points = self.band_points;
         let planar = Equations::new(&self.p, vd, band_points);
         let axial = axial::Axial {
             p: &self.p,
@@ -901,7 +888,7 @@ impl Transverse {
         };
         let eq: &dyn Switching = if self.trim.axial { &axial } else { &planar };
         match &mut self.solver {
-            Solver::Adaptive(_) | Solver::Dop853(_) if round_off => {
+            Solver::General(_) if round_off => {
                 let mut rk = Rk4 {
                     h_max: f64::INFINITY,
                 };
@@ -910,27 +897,10 @@ impl Transverse {
             // On the equations' own types rather than through `eq`: the contact then inlines
             // into the right-hand side, and the step takes fewer instructions
             // (docs/performance.md, "Measurements behind the code").
-            Solver::Adaptive(Adaptive::Dopri5(d)) if self.trim.axial => {
-                d.integrate_switched(&axial, t0, t1, &mut self.y, &mut self.work)?
+            Solver::General(m) if self.trim.axial => {
+                m.advance(&axial, (t0, t1), &mut self.y, &mut self.work)?
             }
-            Solver::Adaptive(Adaptive::Dopri5(d)) => {
-                d.integrate_switched(&planar, t0, t1, &mut self.y, &mut self.work)?
-            }
-            Solver::Adaptive(Adaptive::Radau5(r)) => {
-                r.integrate_switched(eq, t0, t1, &mut self.y, &mut self.work)?
-            }
-            Solver::Dop853(d) if self.trim.axial => {
-                d.integrate_switched(&axial, t0, t1, &mut self.y, &mut self.work)?
-            }
-            Solver::Dop853(d) => {
-                d.integrate_switched(&planar, t0, t1, &mut self.y, &mut self.work)?
-            }
-            Solver::Rk4 { steps_per_period } => {
-                let mut rk = Rk4 {
-                    h_max: 1.0 / (self.p.f * f64::from(*steps_per_period)),
-                };
-                rk.integrate(eq, t0, t1, &mut self.y, &mut self.work)?;
-            }
+            Solver::General(m) => m.advance(&planar, (t0, t1), &mut self.y, &mut self.work)?,
             Solver::TwoPhase(tp) => {
                 tp.advance(&self.p, vd, (origin, t0, t1), &mut self.y, &mut self.work)?;
             }
@@ -1056,9 +1026,8 @@ impl Simulation for Transverse {
             return Some(unstable);
         }
         let (t, name) = match &mut self.solver {
-            Solver::Adaptive(a) => (a.stiff_since(), "dopri5"),
-            Solver::Dop853(d) => (d.stiff_since(), "dop853"),
-            Solver::Rk4 { .. } | Solver::TwoPhase(_) | Solver::Exponential(_) => (None, ""),
+            Solver::General(m) => (m.stiff_since(), m.name()),
+            Solver::TwoPhase(_) | Solver::Exponential(_) => (None, ""),
         };
         Some(super::stiff_warning(t?, name, "radau5 or exponential"))
     }
@@ -1078,12 +1047,13 @@ impl Simulation for Transverse {
         out.extend_from_slice(&self.y);
         out.extend_from_slice(&self.mean.save());
         match &self.solver {
-            Solver::Adaptive(a) => {
-                out.push(a.step_hint());
-                self.save_ahead(out);
+            Solver::General(m) => {
+                m.save_into(out);
+                if self.saves_ahead() {
+                    self.save_ahead(out);
+                }
             }
-            Solver::Dop853(d) => out.push(d.h),
-            Solver::Rk4 { .. } | Solver::Exponential(_) => out.push(0.0),
+            Solver::Exponential(_) => out.push(0.0),
             Solver::TwoPhase(tp) => out.extend_from_slice(&tp.save()),
         }
     }
@@ -1093,14 +1063,14 @@ impl Simulation for Transverse {
         let extra = match &self.solver {
             Solver::TwoPhase(_) => two_phase::SAVED,
             // The step hint and the step taken ahead, if any (a flag first).
-            Solver::Adaptive(_) => match state.get(base + 1) {
+            Solver::General(_) if self.saves_ahead() => match state.get(base + 1) {
                 Some(1.0) => 2 + ahead::SAVED,
                 _ => 2,
             },
             _ => 1,
         };
         super::check_saved("TransverseFriction (with this solver)", state, base + extra)?;
-        if let Solver::Adaptive(_) = self.solver {
+        if self.saves_ahead() {
             self.restore_ahead(&state[base + 1..])?;
         }
         self.t = state[0];
@@ -1111,9 +1081,8 @@ impl Simulation for Transverse {
         self.y.copy_from_slice(&state[y..y + MAX_DIM]);
         self.mean.restore(&state[y + MAX_DIM..base]);
         match &mut self.solver {
-            Solver::Adaptive(a) => a.set_step_hint(state[base]),
-            Solver::Dop853(d) => d.h = state[base],
-            Solver::Rk4 { .. } | Solver::Exponential(_) => {}
+            Solver::General(m) => m.restore(&state[base..]),
+            Solver::Exponential(_) => {}
             Solver::TwoPhase(tp) => tp.restore(&state[base..]),
         }
         Ok(())

@@ -19,6 +19,7 @@ mod ahead;
 pub use ahead::{Carry, StepAhead, CARRY_SAVED, SAVED_LEN as STEP_AHEAD_SAVED};
 
 use super::narrow::{Narrow, Verdict, Watch};
+use super::stepping::Stepping;
 use super::stiffness::StiffnessTest;
 use super::switching::{crossed, Smooth, Switching, MAX_SWITCHES};
 use super::{Integrator, Ode, Work, MAX_DIM};
@@ -1126,6 +1127,33 @@ impl Dopri5 {
             0.01 * (d0 / d1).sqrt()
         };
         h.min(span).min(self.h_max) * self.rtol.powf(0.2).max(1e-3)
+    }
+}
+
+impl Stepping for Dopri5 {
+    fn name(&self) -> &'static str {
+        "dopri5"
+    }
+    fn tolerance(&self) -> Option<f64> {
+        Some(self.rtol)
+    }
+    fn step_hint(&self) -> f64 {
+        self.h
+    }
+    fn set_step_hint(&mut self, h: f64) {
+        self.h = h;
+    }
+    fn stiff_since(&mut self) -> Option<f64> {
+        Dopri5::stiff_since(self)
+    }
+    fn advance<S: Switching>(
+        &mut self,
+        ode: &S,
+        (t0, t1): (f64, f64),
+        y: &mut [f64],
+        work: &mut Work,
+    ) -> Result<(), String> {
+        self.integrate_switched(ode, t0, t1, y, work)
     }
 }
 

@@ -9,11 +9,11 @@
 //! for them ([`Transverse::state`], [`Transverse::mean_now`]), and the mean takes the step's
 //! whole integral at its end.
 
-use super::{axial, band_points, Drive, Equations, Solver, Transverse, Q};
+use super::{axial, Drive, Equations, Solver, Transverse, Q};
 use crate::models::period_mean::PeriodMean;
 use crate::models::ramp::Ramp;
-use crate::solve::adaptive::Adaptive;
 use crate::solve::dopri::{Carry, StepAhead, CARRY_SAVED, STEP_AHEAD_SAVED};
+use crate::solve::method::Method;
 use crate::solve::MAX_DIM;
 
 /// A dopri5 step taken past the communication point, with where the integration goes on from.
@@ -39,7 +39,7 @@ pub(super) const SAVED: usize = 2 + MAX_DIM + STEP_AHEAD_SAVED + CARRY_SAVED;
 impl Transverse {
     /// Whether calls may read steps taken ahead: dopri5, with the drive prescribed.
     pub(super) fn looks_ahead(&self) -> bool {
-        matches!(self.solver, Solver::Adaptive(Adaptive::Dopri5(_)))
+        matches!(self.solver, Solver::General(Method::Dopri5(_)))
             && matches!(self.drive, Drive::Prescribed(_))
     }
 
@@ -123,8 +123,8 @@ impl Transverse {
         let Drive::Prescribed(vd) = self.drive else {
             return Ok(false);
         };
-        let points = band_points(&self.solver);
-        let Solver::Adaptive(Adaptive::Dopri5(d)) = &mut self.solver else {
+        let points = self.band_points;
+        let Solver::General(Method::Dopri5(d)) = &mut self.solver else {
             return Ok(false);
         };
         let reach = (boundary - t).min(1.0 / self.p.f);
@@ -173,6 +173,15 @@ impl Transverse {
             carry,
         });
         Ok(true)
+    }
+
+    /// Whether a saved state holds a step taken ahead (a flag, and the step if there is one):
+    /// with dopri5, and radau5 (always none), whose states were laid out so before dop853 came.
+    pub(super) fn saves_ahead(&self) -> bool {
+        matches!(
+            self.solver,
+            Solver::General(Method::Dopri5(_) | Method::Radau5(_))
+        )
     }
 
     /// Appends the step taken ahead to a saved state: a flag, then [`SAVED`] numbers.
