@@ -368,6 +368,17 @@ struct AheadRun<'a> {
     slot: &'a mut Option<(StepAhead, Carry)>,
 }
 
+/// Where a run stops, short of an error.
+enum Stop<'a> {
+    /// At the interval's end.
+    End,
+    /// At the end of the first step that ends on a kink (or at the interval's end), the number
+    /// taking the largest |y[0]| met ([`Dopri5::integrate_to_kink`]).
+    Kink(&'a mut f64),
+    /// At the end of the first accepted step that reaches a time ([`AheadRun`]).
+    Ahead(AheadRun<'a>),
+}
+
 /// The last step taken ahead, as the run going on from its end sees it: its start and length
 /// in this run's time, its switches at the start, and its quintic.
 struct Carried<'a> {
@@ -717,7 +728,7 @@ impl Dopri5 {
         y: &mut [f64],
         work: &mut Work,
     ) -> Result<(), String> {
-        self.run(ode, (t0, t1), y, work, None, None).map(|_| ())
+        self.run(ode, (t0, t1), y, work, Stop::End).map(|_| ())
     }
 
     /// Integrates from `t0` towards `t1` up to the end of the first step that reaches `past`
@@ -742,7 +753,7 @@ impl Dopri5 {
                 from,
                 slot: &mut slot,
             };
-            self.run(ode, (t0, t1), y, work, None, Some(ahead))?
+            self.run(ode, (t0, t1), y, work, Stop::Ahead(ahead))?
         } else {
             t0
         };
@@ -764,19 +775,17 @@ impl Dopri5 {
         work: &mut Work,
         largest: &mut f64,
     ) -> Result<f64, String> {
-        self.run(ode, (t0, t1), y, work, Some(largest), None)
+        self.run(ode, (t0, t1), y, work, Stop::Kink(largest))
     }
 
-    /// The integration; with `stop` (the largest |y[0]| met so far), up to the first kink it
-    /// stops at; with `ahead`, up to the end of the first accepted step that reaches its time.
+    /// The integration, up to where `stop` says.
     fn run<S: Switching + ?Sized>(
         &mut self,
         ode: &S,
         (t0, t1): (f64, f64),
         y: &mut [f64],
         work: &mut Work,
-        mut stop: Option<&mut f64>,
-        mut ahead: Option<AheadRun>,
+        mut stop: Stop,
     ) -> Result<f64, String> {
         let n = ode.dim();
         if n > MAX_DIM || y.len() < n {
@@ -791,7 +800,7 @@ impl Dopri5 {
                 self.rtol, self.h_max
             ));
         }
-        if stop.is_some() && ode.decaying().contains(&0) {
+        if matches!(stop, Stop::Kink(_)) && ode.decaying().contains(&0) {
             return Err(
                 "dopri5: integrate_to_kink reads the extremes of y[0] off the interpolant, which is no polynomial where y[0] decays under the integrating factor".into(),
             );
@@ -802,7 +811,10 @@ impl Dopri5 {
         let span = t1 - t0;
         // Steps shorter than this are round-off in t.
         let h_tiny = 16.0 * f64::EPSILON * t0.abs().max(t1.abs()).max(span);
-        let from = ahead.as_ref().and_then(|a| a.from);
+        let from = match &stop {
+            Stop::Ahead(a) => a.from,
+            _ => None,
+        };
         let mut k1 = [0.0; MAX_DIM];
         match from {
             Some((carry, _)) => k1 = carry.k1,
@@ -904,7 +916,7 @@ impl Dopri5 {
             // A step that crossed only kinks where the right-hand side stays C1 and passed its
             // error test stands where it stops there (it stops a little past them): where they
             // lie is not needed.
-            let across = stop.is_some()
+            let across = matches!(stop, Stop::Kink(_))
                 && tr.err <= 1.0
                 && (0..count).all(|i| !crossed(sw_old[i], sw_new[i]) || ode.smooth_across(i));
             for i in 0..count {
@@ -1045,7 +1057,8 @@ impl Dopri5 {
             if let Some(cap) = cap {
                 self.h = self.h.min(cap);
             }
-            if let Some(largest) = stop.as_deref_mut() {
+            if let Stop::Kink(largest) = &mut stop {
+                let largest: &mut f64 = largest;
                 *largest = largest.max(y[0].abs());
                 if rate_at_start * k1[0] < 0.0 {
                     let dense = Dense::new(coupled, &y_start[..coupled], &tr, h_taken);
@@ -1055,7 +1068,7 @@ impl Dopri5 {
                     return Ok(t);
                 }
             }
-            if let Some(a) = &mut ahead {
+            if let Stop::Ahead(a) = &mut stop {
                 if t >= a.past {
                     let step = StepAhead::new(ode, (t_start, &y_start[..n]), &tr, h_taken, work);
                     let carry = Carry {
