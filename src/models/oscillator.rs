@@ -35,7 +35,7 @@ use crate::models::oscillator::table::{vr, TABLE};
 use crate::solve::dopri::Dopri5;
 use crate::solve::method::Method;
 use crate::solve::radau::StepPolynomial;
-use crate::solve::stepping::Stepping;
+use crate::solve::stepping::{CallEnd, Stepping};
 use crate::solve::{shooting, within_step_budget, Ode, Work};
 use crate::variables::values::ValueSet;
 use exact::{Event, Mode, State, Switch};
@@ -205,7 +205,7 @@ struct Ahead {
 /// take ahead, a flag, the polynomial of at most 3 states, the end and the largest |u|.
 const AHEAD_SAVED: usize = 3 + StepPolynomial::saved_len(3) + 4 + 1;
 
-/// The fewest communication steps a step taken ahead must hold ([`Oscillator::look_ahead`]).
+/// The fewest communication steps a step taken ahead must hold ([`Oscillator::take_step_ahead`]).
 const CALLS_AHEAD: f64 = 4.0;
 
 /// The numbers of a saved state without the step ahead.
@@ -215,7 +215,7 @@ const STATE_SAVED: usize = 10;
 pub struct Oscillator {
     core: Core,
     /// Steps may be taken past the communication point ([`Ahead`]): radau5, force prescribed.
-    looks_ahead: bool,
+    takes_steps_ahead: bool,
     ahead: Option<Ahead>,
     /// The longest step to take ahead: one whose polynomial is read within the tolerance
     /// ([`StepPolynomial::interior_error`]), as the last one taken shows.
@@ -402,14 +402,14 @@ impl Oscillator {
             Core::Exact(switch) => switch.initial_mode(start_time, u0, v0, held),
             Core::Regularized(..) => Mode::Sliding(1.0),
         };
-        let looks_ahead = matches!(
+        let takes_steps_ahead = matches!(
             &core,
             Core::Regularized(equations, Solver::General(Method::Radau5(_)))
                 if !equations.plant.input
         );
         Ok(Oscillator {
             core,
-            looks_ahead,
+            takes_steps_ahead,
             ahead: None,
             ahead_limit: f64::MAX,
             state: State {
@@ -544,12 +544,12 @@ impl Oscillator {
     /// Answers a step ending at `t_end` from the step taken ahead, if there is one: inside it,
     /// from its polynomial (true); at or past its end, by going on from there (true if `t_end`
     /// is its end, to round-off; false if the loop must go on).
-    fn read_ahead(&mut self, t_end: f64) -> bool {
+    fn read_step_ahead(&mut self, t_end: f64) -> bool {
         let Some(ahead) = self.ahead else {
             return false;
         };
-        let slack = self.amplitude.slack(t_end);
-        if t_end < ahead.end[0] - slack {
+        let call = CallEnd::of(t_end, ahead.end[0], self.amplitude.slack(t_end));
+        if call == CallEnd::Inside {
             self.read_step(&ahead.step, t_end);
             return true;
         }
@@ -557,7 +557,7 @@ impl Oscillator {
         self.set_motion(ahead.end[0], &ahead.end[1..]);
         self.amplitude
             .add(ahead.largest, ahead.end[0], self.state.u.abs());
-        if t_end <= ahead.end[0] + slack {
+        if call == CallEnd::AtEnd {
             self.state.t = t_end;
             true
         } else {
@@ -611,7 +611,12 @@ impl Oscillator {
     /// `t_end` from it (true). False, with nothing changed but the work and that suggestion,
     /// where it may not, or its last step does not hold `t_end` (a rejection or a kink cut it),
     /// or its polynomial is not within the tolerance.
-    fn look_ahead(&mut self, t_end: f64, boundary: f64, at_start: &Work) -> Result<bool, String> {
+    fn take_step_ahead(
+        &mut self,
+        t_end: f64,
+        boundary: f64,
+        at_start: &Work,
+    ) -> Result<bool, String> {
         let Core::Regularized(_, Solver::General(Method::Radau5(radau))) = &mut self.core else {
             return Ok(false);
         };
@@ -620,7 +625,7 @@ impl Oscillator {
         let end = (t + hints.1.min(self.max_substep).min(self.ahead_limit)).min(boundary);
         // Only a step that holds several calls pays for its reading and for the steps a
         // proposal taken from a short call's last step has rejected.
-        if !self.looks_ahead || end - t < CALLS_AHEAD * (t_end - t) {
+        if !self.takes_steps_ahead || end - t < CALLS_AHEAD * (t_end - t) {
             return Ok(false);
         }
         // The step ahead is the one proposed, not the call's last cut to its span.
@@ -677,7 +682,7 @@ impl Oscillator {
         self.held = held;
         let t_end = self.state.t + h;
         let at_start = self.work;
-        let done = self.read_ahead(t_end);
+        let done = self.read_step_ahead(t_end);
         while !done && self.state.t < t_end {
             within_step_budget(&self.work, &at_start, self.state.t)?;
             let boundary = if self.tracks_amplitude {
@@ -694,7 +699,7 @@ impl Oscillator {
                 } else {
                     t_end
                 };
-            if segment_end == t_end && self.look_ahead(t_end, boundary, &at_start)? {
+            if segment_end == t_end && self.take_step_ahead(t_end, boundary, &at_start)? {
                 break;
             }
             let largest = self.advance(segment_end, log.as_deref_mut(), &at_start, None)?;
@@ -957,7 +962,7 @@ impl Simulation for Oscillator {
             0.0 => None,
             _ => {
                 let (step, rest) = ahead[1..].split_at(StepPolynomial::saved_len(3));
-                let step = StepPolynomial::read(3, step).filter(|_| self.looks_ahead);
+                let step = StepPolynomial::read(3, step).filter(|_| self.takes_steps_ahead);
                 let Some(step) = step else {
                     return Err(format!(
                         "a {} state holds a step taken ahead that this simulation cannot take",

@@ -946,7 +946,7 @@ impl Simulation for Transverse {
         let at_start = self.work;
         // The step taken ahead that the call read to its end, which the next goes on from.
         let mut behind = None;
-        let mut done = self.read_ahead(t_end, &mut behind);
+        let mut done = self.read_step_ahead(t_end, &mut behind);
         if self.t != start && !done {
             // The call goes on from the end of the step taken ahead.
             self.p.set_time(self.t);
@@ -969,8 +969,8 @@ impl Simulation for Transverse {
                 t_end
             };
             let next = if next > t { next } else { t_end };
-            if next == t_end && self.look_ahead((t, t_end, boundary), behind.take())? {
-                done = self.read_ahead(t_end, &mut behind);
+            if next == t_end && self.take_step_ahead((t, t_end, boundary), behind.take())? {
+                done = self.read_step_ahead(t_end, &mut behind);
                 if !done {
                     // The step ended short of the call (on a kink): on from its end.
                     (origin, t) = (self.t, self.t);
@@ -994,7 +994,7 @@ impl Simulation for Transverse {
     }
 
     fn read_inside(&mut self, h: f64) -> bool {
-        self.read_inside_ahead(h)
+        self.read_inside_step_ahead(h)
     }
 
     fn write_outputs(&self, values: &mut ValueSet) {

@@ -3,6 +3,11 @@
 //! functions, [`Switching`]), and the solver advances them, ending its steps on the switching
 //! functions' sign changes, answers what the model reads of it (its tolerance, a stiffness
 //! found), and saves and restores what it carries from one call to the next.
+//!
+//! A step taken ahead is a solver's step taken whole past the communication point, its
+//! interpolant read by the calls that end inside it ([`CallEnd`]): the models that take them
+//! say so with one vocabulary (`takes_steps_ahead`, `take_step_ahead`, `read_step_ahead`), and
+//! the FMI layer asks one question of any model, `Simulation::read_inside`.
 
 use super::switching::Switching;
 use super::Work;
@@ -50,5 +55,28 @@ pub trait Stepping {
     /// Restores what [`Stepping::save_into`] wrote (`saved` holds [`SAVED`] numbers).
     fn restore(&mut self, saved: &[f64]) {
         self.set_step_hint(saved[0]);
+    }
+}
+
+/// Where a call that ends at `t_end` ends against a step taken ahead to `end`, past the
+/// communication point: `slack` is the clock's round-off, within which a call ends on the step's
+/// end. A call inside the step is read from its interpolant; one at its end takes its end
+/// state; one past it goes on from there.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CallEnd {
+    Inside,
+    AtEnd,
+    Past,
+}
+
+impl CallEnd {
+    pub fn of(t_end: f64, end: f64, slack: f64) -> CallEnd {
+        if t_end < end - slack {
+            CallEnd::Inside
+        } else if t_end <= end + slack {
+            CallEnd::AtEnd
+        } else {
+            CallEnd::Past
+        }
     }
 }
