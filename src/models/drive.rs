@@ -90,12 +90,21 @@ pub struct Drive {
 pub fn build(
     values: &ValueSet,
     start_time: f64,
-    _scope: &super::Scope,
+    scope: &super::Scope,
 ) -> Result<Box<dyn Simulation>, String> {
-    Ok(Box::new(Drive::new(values, start_time)?))
+    Ok(Box::new(Drive::with_scope(values, start_time, scope)?))
 }
 
 impl Drive {
+    /// The simulation for any interface: the drive has nothing a scope lets it skip.
+    pub fn with_scope(
+        values: &ValueSet,
+        start_time: f64,
+        _scope: &super::Scope,
+    ) -> Result<Self, String> {
+        Drive::new(values, start_time)
+    }
+
     pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, String> {
         require_finite_start(start_time)?;
         let resistance = require_positive(values, vr::R)?;

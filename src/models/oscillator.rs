@@ -257,7 +257,7 @@ impl Oscillator {
 
     /// The simulation for an interface that hides what `scope` lists.
     pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
-        let mut sim = Oscillator::from_given(values, start_time, scope)?;
+        let mut sim = Oscillator::starting_from(values, start_time, scope)?;
         if OscillatorInitialState::read(values, vr::INITIAL)? == OscillatorInitialState::Periodic {
             if ForceSource::read(values, vr::FORCE_SOURCE)? == ForceSource::Input {
                 return Err(
@@ -301,7 +301,7 @@ impl Oscillator {
         let swing = std::cell::Cell::new(0.0_f64);
         let mut map = |y: &[f64], tolerance: f64| {
             let values = at(y, tolerance);
-            let mut sim = Oscillator::from_given(&values, start_time, scope)?;
+            let mut sim = Oscillator::starting_from(&values, start_time, scope)?;
             let result = sim.do_step(period, &values);
             work = work.plus(&sim.work);
             result?;
@@ -326,13 +326,13 @@ impl Oscillator {
         *self = Oscillator {
             work: self.work,
             unresolved: self.unresolved.take(),
-            ..Oscillator::from_given(&values, start_time, scope)?
+            ..Oscillator::starting_from(&values, start_time, scope)?
         };
         Ok(())
     }
 
     /// The simulation at `start_time` from (u0, v0).
-    fn from_given(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
+    fn starting_from(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
         let m = require_positive(values, vr::M)?;
         let c = require_non_negative(values, vr::C)?;
         let k = require_non_negative(values, vr::K)?;

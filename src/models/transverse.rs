@@ -1204,4 +1204,4 @@ impl Transverse {
 mod tests;
 
 #[cfg(test)]
-mod drive_input_tests;
+mod input_tests;
