@@ -17,10 +17,13 @@
 mod ahead;
 mod axial;
 mod exponential;
+mod solver;
 #[cfg(feature = "tools")]
 pub mod stability;
 pub mod table;
 mod two_phase;
+
+pub use solver::Solver;
 
 use super::input_scheme::{self, Extrapolator};
 use super::period_mean::PeriodMean;
@@ -32,12 +35,8 @@ use super::{
 };
 use crate::friction::lugre2d::{radial_rates, Contact, LuGre2d, SlipLaw};
 use crate::models::transverse::table::vr;
-use crate::solve::dop853::Dop853;
-use crate::solve::dopri::Dopri5;
-use crate::solve::method::Method;
 use crate::solve::narrow::Narrow;
 use crate::solve::phase::{cos_turns, turns};
-use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
 use crate::solve::shooting::{self, NoOrbit};
 use crate::solve::stepping::Stepping;
@@ -73,48 +72,6 @@ pub const Y: usize = 8;
 /// exp(-BAND^2) ~ 1e-7 outside.
 const BAND: f64 = 4.0;
 
-/// Where else, in multiples of vs, steps end inside the Stribeck band of a rate whose absolute
-/// value has a kink (v1 and v2 for the split law, v1 + v2 for the total law), when the
-/// tolerance asks for it ([`band_points`]). Inside the band g(v) rises to FS over a time of
-/// about vs / |v'| (a tenth of a microsecond at the paper's values), and the slip |v|/g(v) has
-/// a bump there that steps ending only on v = 0 span: the stages miss the bump and so does the
-/// error estimate, which leaves the split law an error floor in FFx_mean whatever the
-/// tolerance. Ends at 3 vs lower the floor, ends at vs and 3 vs let the error follow the
-/// tolerance, ends at 2 vs do not help (measured with benches/transverse.py: see
-/// docs/performance.md, "Benchmarks" and "Measurements behind the code").
-const BAND_POINTS_COARSE: [f64; 1] = [3.0];
-/// The band's step ends for the tightest tolerances: at vs too.
-const BAND_POINTS_FINE: [f64; 2] = [1.0, 3.0];
-
-/// The tolerance at and below which dopri5 ends steps at [`BAND_POINTS_COARSE`]. Above it the
-/// unresolved bump is within the tolerance and the step ends would only cost right-hand sides;
-/// at it they are what meets the tolerance (split law, the benchmark's case: errors and
-/// costs with and without them in docs/performance.md, "Measurements behind the code").
-const DOPRI5_COARSE_BAND_RTOL: f64 = 3e-7;
-
-/// The tolerance at and below which dopri5 ends steps at [`BAND_POINTS_FINE`] instead: there
-/// the coarse ends' error floor is no longer well inside the tolerance. Above it the coarse
-/// ends cost fewer right-hand sides and fewer kinks to foresee for about the fine ends' error,
-/// at the paper's larger amplitudes too (docs/performance.md, "Measurements behind the code").
-const DOPRI5_FINE_BAND_RTOL: f64 = 1e-7;
-
-/// radau5 ends steps at [`BAND_POINTS_FINE`] from this tolerance down: above it radau5 meets
-/// the tolerance without them, and they would only cost it right-hand sides
-/// (docs/performance.md, "Measurements behind the code").
-const RADAU5_FINE_BAND_RTOL: f64 = 1e-7;
-
-/// The points inside the Stribeck band where the solver `name` ends steps at the tolerance
-/// `rtol`: set by the tolerance for the adaptive solvers, none for the others.
-fn band_points(name: TransverseSolver, rtol: f64) -> &'static [f64] {
-    use TransverseSolver::{Dop853, Dopri5, Radau5};
-    match name {
-        Dopri5 | Dop853 if rtol <= DOPRI5_FINE_BAND_RTOL => &BAND_POINTS_FINE,
-        Dopri5 | Dop853 if rtol <= DOPRI5_COARSE_BAND_RTOL => &BAND_POINTS_COARSE,
-        Radau5 if rtol <= RADAU5_FINE_BAND_RTOL => &BAND_POINTS_FINE,
-        _ => &[],
-    }
-}
-
 /// The damping band's coordinate (the rate in units of vs) read off its edges, switches 0 and
 /// 1 of both the plane and the axial equations: the narrow feature dopri5 and radau5 watch.
 #[inline]
@@ -126,7 +83,7 @@ fn band_coordinate(sw: &[f64; MAX_SWITCHES], vs: f64) -> Narrow {
 }
 
 /// Writes, from `out[k]`, the switching functions of a rate `v` whose absolute value has a
-/// kink: v itself and v -+ m vs for the band's `points` ([`band_points`]). Returns the next
+/// kink: v itself and v -+ m vs for the band's `points` ([`solver::band_points`]). Returns the next
 /// free index.
 #[inline]
 fn kink_switches(
@@ -279,7 +236,7 @@ pub fn tolerance_scales(p: &Params, vd: f64) -> [f64; MAX_DIM] {
 pub struct Equations<'a> {
     p: &'a Params,
     vd: Ramp,
-    /// Where steps also end inside the Stribeck band ([`band_points`]).
+    /// Where steps also end inside the Stribeck band ([`solver::band_points`]).
     band_points: &'static [f64],
     /// The support velocity at the last time asked for: dopri5's last two stages and the
     /// switching functions after them all fall on the step's end, and the cos is a fifth of a
@@ -434,24 +391,6 @@ impl Equations<'_> {
     }
 }
 
-/// A general solver on the equations, or one of the scene's own schemes.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Solver {
-    General(Method),
-    TwoPhase(two_phase::TwoPhase),
-    Exponential(exponential::Exponential),
-}
-
-impl Solver {
-    /// The relative tolerance of an adaptive solver.
-    fn rtol(&self) -> Option<f64> {
-        match self {
-            Solver::General(m) => m.tolerance(),
-            Solver::TwoPhase(_) | Solver::Exponential(_) => None,
-        }
-    }
-}
-
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Drive {
     Prescribed(f64),
@@ -463,7 +402,7 @@ pub struct Transverse {
     pub p: Params,
     pub drive: Drive,
     pub solver: Solver,
-    /// The points inside the Stribeck band where the solver ends steps ([`band_points`]).
+    /// The points inside the Stribeck band where the solver ends steps ([`solver::band_points`]).
     band_points: &'static [f64],
     /// Coulomb force FC = mu m g, the scale of the outputs.
     pub fc: f64,
@@ -725,44 +664,13 @@ impl Transverse {
 
         let name = TransverseSolver::read(values, vr::SOLVER)?;
         let trim = Trim::of(scope, values, name);
-        let solver = match name {
-            TransverseSolver::Rk4 => Solver::General(Method::Rk4(Rk4 {
-                h_max: 1.0 / (f * f64::from(steps)),
-            })),
-            TransverseSolver::TwoPhase => {
-                Solver::TwoPhase(two_phase::TwoPhase::new(&p, start_time, &y, steps))
-            }
-            TransverseSolver::Exponential => Solver::Exponential(exponential::Exponential {
-                steps_per_period: steps,
-            }),
-            TransverseSolver::Dopri5 | TransverseSolver::Radau5 | TransverseSolver::Dop853 => {
-                // The parameter vd, the drive's nominal velocity, with an input drive too, not
-                // vd_in's value at the build: fmi2SetFMUstate builds again with the value then,
-                // and a restored run must take the steps the first one took.
-                let mut scale = tolerance_scales(&p, vd);
-                if trim.axial {
-                    // The 1D equations leave the y axis at rest: out of the error control, so
-                    // that its zeros do not dilute the others' errors.
-                    scale[VY] = f64::INFINITY;
-                    scale[ZY] = f64::INFINITY;
-                }
-                Solver::General(if name == TransverseSolver::Radau5 {
-                    let mut radau = Radau5::new(rtol, rtol, 0.05 / f);
-                    radau.atol_scale = scale;
-                    Method::Radau5(radau)
-                } else if name == TransverseSolver::Dop853 {
-                    Method::Dop853(Dop853::new(rtol, scale.map(|s| rtol * s), 0.05 / f))
-                } else {
-                    Method::Dopri5(Dopri5::new(rtol, scale.map(|s| rtol * s), 0.05 / f))
-                })
-            }
-        };
+        let solver = Solver::new(name, &p, (start_time, &y), steps, (rtol, vd), trim.axial);
 
         Ok(Transverse {
             p,
             drive,
             solver,
-            band_points: band_points(name, rtol),
+            band_points: solver::band_points(name, rtol),
             fc,
             start_time,
             t: start_time,

@@ -1,6 +1,9 @@
 use super::*;
 use crate::friction::lugre::LuGre;
+use crate::models::transverse::solver::{BAND_POINTS_COARSE, BAND_POINTS_FINE};
 use crate::models::transverse::table::{BODY, INITIAL, SLIP_LAW, SOLVER, TABLE};
+use crate::solve::dopri::Dopri5;
+use crate::solve::method::Method;
 
 fn values(solver: &str, slip: &str) -> ValueSet {
     let mut v = ValueSet::start(&TABLE);
