@@ -18,6 +18,7 @@
 //! FN / (m g).
 
 mod closed_form;
+mod equations;
 mod solver;
 #[cfg(feature = "tools")]
 pub mod stability;

@@ -18,12 +18,15 @@
 //! the solver proposes takes that step past the communication point and reads the state there
 //! from the step's polynomial; the calls that follow inside the step read it too (`Ahead`).
 
+mod equations;
 pub mod exact;
 mod linear_phase;
 mod solver;
 #[cfg(feature = "tools")]
 pub mod stability;
 pub mod table;
+
+pub use equations::{Equations, Forced};
 
 use super::switch::{
     ForceSource, OscillatorInitialState, OscillatorLaw, OscillatorSolver, Switch as _,
@@ -42,102 +45,6 @@ use exact::{Event, Mode, State, Switch};
 use linear_phase::LinearPhase;
 use solver::Solver;
 use std::f64::consts::TAU;
-
-/// The linear oscillator `m u'' + c u' + k u = F(t)` and its forcing: what the regularised and
-/// the exact cores share.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Forced {
-    pub m: f64,
-    pub c: f64,
-    pub k: f64,
-    pub w: f64,
-    /// Sine amplitude; unused when `input`.
-    pub p: f64,
-    /// Whether the force is the input, held over each step.
-    pub input: bool,
-}
-
-impl Forced {
-    /// The excitation force at t (`held` is the input over the current step).
-    pub fn force(&self, t: f64, held: f64) -> f64 {
-        if self.input {
-            held
-        } else {
-            self.p * (self.w * t).sin()
-        }
-    }
-}
-
-/// The regularised equations of motion, `y = (u, u', W)` with W the friction work, the integral
-/// of H u' (a quadrature state, integrated to the solver's order; left out when W_diss is
-/// hidden).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Equations {
-    pub plant: Forced,
-    /// The input force held over the current step.
-    pub held: f64,
-    pub law: Regularized,
-    /// W is integrated (W_diss is read).
-    pub with_work: bool,
-}
-
-impl Equations {
-    /// rk4 blows up (through many steps of finite nonsense) where h times an eigenvalue of the
-    /// linear part `m u'' + (c + C) u' + k u` leaves its stability region, which lies within
-    /// |h lambda| < 3 (2.96 at most). C is the friction law's steepest slope, at u' = 0: it acts
-    /// only while |u'| < D, but a motion that sticks there, or crosses it in a step or two,
-    /// then gains energy at every step (the regression test
-    /// `rk4_refuses_a_step_the_friction_slope_makes_unstable` in `oscillator/tests.rs` holds
-    /// such a case).
-    pub fn require_rk4_stable(&self, h: f64) -> Result<(), String> {
-        let Forced { m, c, k, .. } = self.plant;
-        let slope = self.law.eval(0.0).1.max(0.0);
-        let damping = c + slope;
-        let disc = damping * damping - 4.0 * m * k;
-        let rate = if disc >= 0.0 {
-            (damping + disc.sqrt()) / (2.0 * m)
-        } else {
-            (k / m).sqrt()
-        };
-        if h * rate <= 3.0 {
-            Ok(())
-        } else {
-            Err(format!(
-                "rk4: the step {h:e} s is beyond its stability bound 3/{rate:e} s set by m, c, k and the friction slope {slope:e} N.s/m at u' = 0; use more steps_per_period (or the radau5 solver)"
-            ))
-        }
-    }
-
-    /// `(H, C, u'')` at (t, u, u').
-    pub fn evaluate(&self, t: f64, u: f64, v: f64) -> (f64, f64, f64) {
-        let (h, c) = self.law.eval(v);
-        let pl = &self.plant;
-        let a = (pl.force(t, self.held) - pl.c * v - h - pl.k * u) / pl.m;
-        (h, c, a)
-    }
-}
-
-impl Ode for Equations {
-    fn dim(&self) -> usize {
-        if self.with_work {
-            3
-        } else {
-            2
-        }
-    }
-    /// The work is a quadrature: the right-hand side reads (u, u') alone.
-    fn coupled(&self) -> usize {
-        2
-    }
-    fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
-        let (h, _, a) = self.evaluate(t, y[0], y[1]);
-        dydt[0] = y[1];
-        dydt[1] = a;
-        if self.with_work {
-            dydt[2] = h * y[1];
-        }
-    }
-}
 
 /// One per instance, built once: the sizes of the variants do not matter, and the regularised
 /// core, which every right-hand side evaluation reads, stays unboxed.

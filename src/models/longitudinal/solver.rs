@@ -1,10 +1,11 @@
 //! The solver menu of scene L. `exponential` is the simulation's own scheme (in the parent module),
 //! `closed_form` the exact bristle of Dahl at alpha = 1 ([`ClosedForm`]); the others integrate
-//! the bristle ODE `z' = rate(z, vr(t))` together with the force integral `q' = FT(z, vr(t))`
+//! the bristle ODE (`equations.rs`) together with the force integral `q' = FT(z, vr(t))`
 //! and the friction work `w' = FT vr` as quadrature states (same order as the solver), over
 //! sub-steps that never contain a sign change of vr.
 
 use super::closed_form::ClosedForm;
+use super::equations::{Bristle, LoadedLaw};
 use super::Law;
 use crate::models::longitudinal::table::vr;
 use crate::models::switch::{LongitudinalSolver, Switch};
@@ -13,7 +14,7 @@ use crate::solve::method::Method;
 use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
 use crate::solve::stepping::Stepping;
-use crate::solve::{Integrator, Ode, Work, MAX_DIM};
+use crate::solve::{Integrator, Work, MAX_DIM};
 use crate::variables::values::ValueSet;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -22,45 +23,6 @@ pub enum Solver {
     /// A general solver on the bristle ODE (rk4's steps of at most 1/n period).
     General(Method),
     ClosedForm(ClosedForm),
-}
-
-/// The law as a function of time, under a moving normal force.
-pub type LoadedLaw<'a> = &'a dyn Fn(f64) -> Law;
-
-/// `(z, q, w)` with the velocity (and the law, under a moving normal force) as a function of
-/// time; the first `dim` of them.
-struct Bristle<'a> {
-    law: &'a Law,
-    velocity: &'a dyn Fn(f64) -> f64,
-    loaded: Option<LoadedLaw<'a>>,
-    dim: usize,
-}
-
-impl Ode for Bristle<'_> {
-    fn dim(&self) -> usize {
-        self.dim
-    }
-    /// q and w are quadratures: the right-hand side reads z alone.
-    fn coupled(&self) -> usize {
-        self.dim.min(1)
-    }
-    fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
-        let v = (self.velocity)(t);
-        let law = self.loaded.map(|loaded| loaded(t));
-        let (rate, force) = match law.as_ref().unwrap_or(self.law) {
-            // Coulomb has no state; the simulation integrates its force in closed form instead.
-            Law::Coulomb => (0.0, 0.0),
-            Law::Dahl(d) => (d.rate(y[0], v), d.force(y[0])),
-            Law::LuGre(l) => (l.rate(y[0], v), l.force(y[0], v)),
-        };
-        dydt[0] = rate;
-        if self.dim > 1 {
-            dydt[1] = force;
-        }
-        if self.dim > 2 {
-            dydt[2] = force * v;
-        }
-    }
 }
 
 impl Solver {

@@ -4,14 +4,12 @@
 //! ([`super::linear_phase`]), dopri5 inside it.
 
 use super::Equations;
-use crate::friction::regularized::Regularized;
 use crate::models::switch::OscillatorSolver;
 use crate::solve::dopri::Dopri5;
 use crate::solve::method::Method;
 use crate::solve::radau::{Radau5, StepPolynomial};
 use crate::solve::rk4::Rk4;
 use crate::solve::stepping::Stepping;
-use crate::solve::switching::{Switching, MAX_SWITCHES};
 use crate::solve::{Work, MAX_DIM};
 
 #[derive(Clone, Debug, PartialEq)]
@@ -104,39 +102,5 @@ impl Solver {
                 }
             }
         }
-    }
-}
-
-impl Equations {
-    /// The outer edge of H's band and h: beyond the edge H is the constant h sgn(u').
-    pub fn band(&self) -> (f64, f64) {
-        match self.law {
-            Regularized::Linear { h, d } | Regularized::Trigonometric { h, d } => (d, h),
-            Regularized::LinearStiction { h, d, da }
-            | Regularized::TrigonometricStiction { h, d, da } => (d + 2.0 * da, h),
-        }
-    }
-}
-
-impl Switching for Equations {
-    /// H has kinks in u' at +-D (+-(D + Da), +-(D + 2 Da) with stiction).
-    fn switches(&self, _t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
-        let v = y[1];
-        let edges = match self.law {
-            Regularized::Linear { d, .. } | Regularized::Trigonometric { d, .. } => [d, d, d],
-            Regularized::LinearStiction { d, da, .. }
-            | Regularized::TrigonometricStiction { d, da, .. } => [d, d + da, d + 2.0 * da],
-        };
-        let count = if edges[0] == edges[2] { 1 } else { 3 };
-        for (i, e) in edges[..count].iter().enumerate() {
-            out[2 * i] = v - e;
-            out[2 * i + 1] = v + e;
-        }
-        2 * count
-    }
-
-    /// The trigonometric law's H is C1 at +-D: its slope falls to 0 there.
-    fn smooth_across(&self, _i: usize) -> bool {
-        matches!(self.law, Regularized::Trigonometric { .. })
     }
 }

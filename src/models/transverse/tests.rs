@@ -4,6 +4,8 @@ use crate::models::transverse::solver::{BAND_POINTS_COARSE, BAND_POINTS_FINE};
 use crate::models::transverse::table::{BODY, INITIAL, SLIP_LAW, SOLVER, TABLE};
 use crate::solve::dopri::Dopri5;
 use crate::solve::method::Method;
+use crate::solve::narrow::Narrow;
+use crate::solve::switching::MAX_SWITCHES;
 
 fn values(solver: &str, slip: &str) -> ValueSet {
     let mut v = ValueSet::start(&TABLE);
