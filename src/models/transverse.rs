@@ -631,32 +631,28 @@ impl Simulation for Transverse {
         self.vd_input.save(out);
         out.extend_from_slice(&self.y);
         out.extend_from_slice(&self.mean.save());
-        match &self.solver {
-            Solver::General(m) => {
-                m.save_into(out);
-                if self.saves_ahead() {
-                    self.save_ahead(out);
-                }
-            }
-            Solver::Exponential(_) => out.push(0.0),
-            Solver::TwoPhase(tp) => out.extend_from_slice(&tp.save()),
+        self.solver.save_into(out);
+        if self.saves_ahead() {
+            self.save_ahead(out);
         }
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
         let base = 2 + input_scheme::SAVED + MAX_DIM + 3;
-        let extra = match &self.solver {
-            Solver::TwoPhase(_) => two_phase::SAVED,
-            // The step hint and the step taken ahead, if any (a flag first).
-            Solver::General(_) if self.saves_ahead() => match state.get(base + 1) {
-                Some(1.0) => 2 + ahead::SAVED,
-                _ => 2,
-            },
+        let solver = base + self.solver.saved_len();
+        // The step taken ahead, if any (a flag first).
+        let ahead = match state.get(solver) {
+            _ if !self.saves_ahead() => 0,
+            Some(1.0) => 1 + ahead::SAVED,
             _ => 1,
         };
-        super::check_saved("TransverseFriction (with this solver)", state, base + extra)?;
+        super::check_saved(
+            "TransverseFriction (with this solver)",
+            state,
+            solver + ahead,
+        )?;
         if self.saves_ahead() {
-            self.restore_ahead(&state[base + 1..])?;
+            self.restore_ahead(&state[solver..])?;
         }
         self.t = state[0];
         self.p.set_time(self.t);
@@ -665,11 +661,7 @@ impl Simulation for Transverse {
         self.vd_input.restore(&state[2..y])?;
         self.y.copy_from_slice(&state[y..y + MAX_DIM]);
         self.mean.restore(&state[y + MAX_DIM..base]);
-        match &mut self.solver {
-            Solver::General(m) => m.restore(&state[base..]),
-            Solver::Exponential(_) => {}
-            Solver::TwoPhase(tp) => tp.restore(&state[base..]),
-        }
+        self.solver.restore(&state[base..solver]);
         Ok(())
     }
 

@@ -9,7 +9,7 @@ use crate::solve::dopri::Dopri5;
 use crate::solve::method::Method;
 use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
-use crate::solve::stepping::Stepping;
+use crate::solve::stepping::{self, Stepping};
 use crate::solve::MAX_DIM;
 
 /// Where else, in multiples of vs, steps end inside the Stribeck band of a rate whose absolute
@@ -68,6 +68,35 @@ impl Solver {
         match self {
             Solver::General(m) => m.tolerance(),
             Solver::TwoPhase(_) | Solver::Exponential(_) => None,
+        }
+    }
+
+    /// How many numbers [`Solver::save_into`] writes.
+    pub(super) fn saved_len(&self) -> usize {
+        match self {
+            Solver::General(_) => stepping::SAVED,
+            Solver::Exponential(_) => 1,
+            Solver::TwoPhase(_) => two_phase::SAVED,
+        }
+    }
+
+    /// Appends what the solver carries from one call to the next to a saved state: a general
+    /// solver's, the two-phase step's forces, a 0 for the exponential scheme (which carries
+    /// nothing: its place keeps the states' layout).
+    pub(super) fn save_into(&self, out: &mut Vec<f64>) {
+        match self {
+            Solver::General(m) => m.save_into(out),
+            Solver::Exponential(_) => out.push(0.0),
+            Solver::TwoPhase(tp) => out.extend_from_slice(&tp.save()),
+        }
+    }
+
+    /// Restores what [`Solver::save_into`] wrote.
+    pub(super) fn restore(&mut self, saved: &[f64]) {
+        match self {
+            Solver::General(m) => m.restore(saved),
+            Solver::Exponential(_) => {}
+            Solver::TwoPhase(tp) => tp.restore(saved),
         }
     }
 
