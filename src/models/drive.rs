@@ -14,6 +14,10 @@
 //! 7 x 7 matrix exponential per distinct step size). The motor is a source, so there is no
 //! passivity to check; the state is checked finite.
 
+mod equations;
+
+pub use equations::Params;
+
 use super::input_scheme::{self, Extrapolator};
 use super::ramp::Ramp;
 use super::switch::{DriveSolver, InputScheme, Switch, VoltageSource};
@@ -21,58 +25,8 @@ use super::{require_finite_start, require_non_negative, require_positive, Simula
 use crate::models::drive::table::{vr, TABLE};
 use crate::solve::expm::{expm, mul_vec, Matrix, Propagators};
 use crate::variables::values::ValueSet;
+use equations::{DIM, I, OMEGA, X};
 use std::f64::consts::TAU;
-
-const DIM: usize = 7;
-const I: usize = 0;
-const OMEGA: usize = 1;
-const X: usize = 2;
-const VOLTAGE: usize = 3;
-const FORCE: usize = 4;
-const VOLTAGE_RATE: usize = 5;
-const FORCE_RATE: usize = 6;
-
-/// The motor, gear and screw, fixed at build time.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Params {
-    pub resistance: f64,
-    pub inductance: f64,
-    pub kt: f64,
-    pub ke: f64,
-    /// Inertia at the motor shaft including the nut's mass reflected through gear and screw.
-    pub j_eff: f64,
-    pub b: f64,
-    /// Nut travel per motor radian, lead / (2 pi n).
-    pub r: f64,
-    pub efficiency: f64,
-    /// The constant armature voltage; None when it comes from V_in.
-    pub voltage: Option<f64>,
-}
-
-impl Params {
-    /// The matrix A of `z' = A z` for the augmented state (module comment).
-    fn system(&self) -> Matrix<DIM> {
-        let mut a = [[0.0; DIM]; DIM];
-        a[I][I] = -self.resistance / self.inductance;
-        a[I][OMEGA] = -self.ke / self.inductance;
-        a[I][VOLTAGE] = 1.0 / self.inductance;
-        a[OMEGA][I] = self.kt / self.j_eff;
-        a[OMEGA][OMEGA] = -self.b / self.j_eff;
-        a[OMEGA][FORCE] = -self.r / (self.efficiency * self.j_eff);
-        a[X][OMEGA] = self.r;
-        a[VOLTAGE][VOLTAGE_RATE] = 1.0;
-        a[FORCE][FORCE_RATE] = 1.0;
-        a
-    }
-
-    /// (i', omega') at current `i`, speed `omega`, voltage and load.
-    pub fn rates(&self, i: f64, omega: f64, voltage: f64, force: f64) -> (f64, f64) {
-        (
-            (voltage - self.resistance * i - self.ke * omega) / self.inductance,
-            (self.kt * i - self.b * omega - self.r * force / self.efficiency) / self.j_eff,
-        )
-    }
-}
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Drive {
@@ -90,12 +44,21 @@ pub struct Drive {
 pub fn build(
     values: &ValueSet,
     start_time: f64,
-    _scope: &super::Scope,
+    scope: &super::Scope,
 ) -> Result<Box<dyn Simulation>, String> {
-    Ok(Box::new(Drive::new(values, start_time)?))
+    Ok(Box::new(Drive::with_scope(values, start_time, scope)?))
 }
 
 impl Drive {
+    /// The simulation for any interface: the drive has nothing a scope lets it skip.
+    pub fn with_scope(
+        values: &ValueSet,
+        start_time: f64,
+        _scope: &super::Scope,
+    ) -> Result<Self, String> {
+        Drive::new(values, start_time)
+    }
+
     pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, String> {
         require_finite_start(start_time)?;
         let resistance = require_positive(values, vr::R)?;

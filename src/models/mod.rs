@@ -7,6 +7,8 @@ pub mod input_scheme;
 pub mod longitudinal;
 pub mod oscillator;
 pub mod period_mean;
+#[cfg(test)]
+mod pinned_runs;
 pub mod ramp;
 pub mod scope;
 #[cfg(feature = "tools")]

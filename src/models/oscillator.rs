@@ -18,12 +18,15 @@
 //! the solver proposes takes that step past the communication point and reads the state there
 //! from the step's polynomial; the calls that follow inside the step read it too (`Ahead`).
 
+mod equations;
 pub mod exact;
 mod linear_phase;
 mod solver;
 #[cfg(feature = "tools")]
 pub mod stability;
 pub mod table;
+
+pub use equations::{Equations, Forced};
 
 use super::switch::{
     ForceSource, OscillatorInitialState, OscillatorLaw, OscillatorSolver, Switch as _,
@@ -32,111 +35,16 @@ use super::{require_finite, require_non_negative, require_positive, Scope, Simul
 use crate::friction::regularized::{stiction_excess, Regularized};
 use crate::friction::sgn;
 use crate::models::oscillator::table::{vr, TABLE};
-use crate::solve::adaptive::Adaptive;
 use crate::solve::dopri::Dopri5;
+use crate::solve::method::Method;
 use crate::solve::radau::StepPolynomial;
+use crate::solve::stepping::{CallEnd, Stepping};
 use crate::solve::{shooting, within_step_budget, Ode, Work};
 use crate::variables::values::ValueSet;
 use exact::{Event, Mode, State, Switch};
 use linear_phase::LinearPhase;
 use solver::Solver;
 use std::f64::consts::TAU;
-
-/// The linear oscillator `m u'' + c u' + k u = F(t)` and its forcing: what the regularised and
-/// the exact cores share.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Forced {
-    pub m: f64,
-    pub c: f64,
-    pub k: f64,
-    pub w: f64,
-    /// Sine amplitude; unused when `input`.
-    pub p: f64,
-    /// Whether the force is the input, held over each step.
-    pub input: bool,
-}
-
-impl Forced {
-    /// The excitation force at t (`held` is the input over the current step).
-    pub fn force(&self, t: f64, held: f64) -> f64 {
-        if self.input {
-            held
-        } else {
-            self.p * (self.w * t).sin()
-        }
-    }
-}
-
-/// The regularised equations of motion, `y = (u, u', W)` with W the friction work, the integral
-/// of H u' (a quadrature state, integrated to the solver's order; left out when W_diss is
-/// hidden).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Equations {
-    pub plant: Forced,
-    /// The input force held over the current step.
-    pub held: f64,
-    pub law: Regularized,
-    /// W is integrated (W_diss is read).
-    pub with_work: bool,
-}
-
-impl Equations {
-    /// rk4 blows up (through many steps of finite nonsense) where h times an eigenvalue of the
-    /// linear part `m u'' + (c + C) u' + k u` leaves its stability region, which lies within
-    /// |h lambda| < 3 (2.96 at most). C is the friction law's steepest slope, at u' = 0: it acts
-    /// only while |u'| < D, but a motion that sticks there, or crosses it in a step or two,
-    /// then gains energy at every step (the regression test
-    /// `rk4_refuses_a_step_the_friction_slope_makes_unstable` in `oscillator/tests.rs` holds
-    /// such a case).
-    pub fn require_rk4_stable(&self, h: f64) -> Result<(), String> {
-        let Forced { m, c, k, .. } = self.plant;
-        let slope = self.law.eval(0.0).1.max(0.0);
-        let damping = c + slope;
-        let disc = damping * damping - 4.0 * m * k;
-        let rate = if disc >= 0.0 {
-            (damping + disc.sqrt()) / (2.0 * m)
-        } else {
-            (k / m).sqrt()
-        };
-        if h * rate <= 3.0 {
-            Ok(())
-        } else {
-            Err(format!(
-                "rk4: the step {h:e} s is beyond its stability bound 3/{rate:e} s set by m, c, k and the friction slope {slope:e} N.s/m at u' = 0; use more steps_per_period (or the radau5 solver)"
-            ))
-        }
-    }
-
-    /// `(H, C, u'')` at (t, u, u').
-    pub fn evaluate(&self, t: f64, u: f64, v: f64) -> (f64, f64, f64) {
-        let (h, c) = self.law.eval(v);
-        let pl = &self.plant;
-        let a = (pl.force(t, self.held) - pl.c * v - h - pl.k * u) / pl.m;
-        (h, c, a)
-    }
-}
-
-impl Ode for Equations {
-    fn dim(&self) -> usize {
-        if self.with_work {
-            3
-        } else {
-            2
-        }
-    }
-    /// The work is a quadrature: the right-hand side reads (u, u') alone.
-    fn coupled(&self) -> usize {
-        2
-    }
-    fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
-        let (h, _, a) = self.evaluate(t, y[0], y[1]);
-        dydt[0] = y[1];
-        dydt[1] = a;
-        if self.with_work {
-            dydt[2] = h * y[1];
-        }
-    }
-}
 
 /// One per instance, built once: the sizes of the variants do not matter, and the regularised
 /// core, which every right-hand side evaluation reads, stays unboxed.
@@ -204,7 +112,7 @@ struct Ahead {
 /// take ahead, a flag, the polynomial of at most 3 states, the end and the largest |u|.
 const AHEAD_SAVED: usize = 3 + StepPolynomial::saved_len(3) + 4 + 1;
 
-/// The fewest communication steps a step taken ahead must hold ([`Oscillator::look_ahead`]).
+/// The fewest communication steps a step taken ahead must hold ([`Oscillator::take_step_ahead`]).
 const CALLS_AHEAD: f64 = 4.0;
 
 /// The numbers of a saved state without the step ahead.
@@ -214,7 +122,7 @@ const STATE_SAVED: usize = 10;
 pub struct Oscillator {
     core: Core,
     /// Steps may be taken past the communication point ([`Ahead`]): radau5, force prescribed.
-    looks_ahead: bool,
+    takes_steps_ahead: bool,
     ahead: Option<Ahead>,
     /// The longest step to take ahead: one whose polynomial is read within the tolerance
     /// ([`StepPolynomial::interior_error`]), as the last one taken shows.
@@ -256,7 +164,7 @@ impl Oscillator {
 
     /// The simulation for an interface that hides what `scope` lists.
     pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
-        let mut sim = Oscillator::from_given(values, start_time, scope)?;
+        let mut sim = Oscillator::starting_from(values, start_time, scope)?;
         if OscillatorInitialState::read(values, vr::INITIAL)? == OscillatorInitialState::Periodic {
             if ForceSource::read(values, vr::FORCE_SOURCE)? == ForceSource::Input {
                 return Err(
@@ -300,7 +208,7 @@ impl Oscillator {
         let swing = std::cell::Cell::new(0.0_f64);
         let mut map = |y: &[f64], tolerance: f64| {
             let values = at(y, tolerance);
-            let mut sim = Oscillator::from_given(&values, start_time, scope)?;
+            let mut sim = Oscillator::starting_from(&values, start_time, scope)?;
             let result = sim.do_step(period, &values);
             work = work.plus(&sim.work);
             result?;
@@ -325,13 +233,13 @@ impl Oscillator {
         *self = Oscillator {
             work: self.work,
             unresolved: self.unresolved.take(),
-            ..Oscillator::from_given(&values, start_time, scope)?
+            ..Oscillator::starting_from(&values, start_time, scope)?
         };
         Ok(())
     }
 
     /// The simulation at `start_time` from (u0, v0).
-    fn from_given(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
+    fn starting_from(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
         let m = require_positive(values, vr::M)?;
         let c = require_non_negative(values, vr::C)?;
         let k = require_non_negative(values, vr::K)?;
@@ -401,14 +309,14 @@ impl Oscillator {
             Core::Exact(switch) => switch.initial_mode(start_time, u0, v0, held),
             Core::Regularized(..) => Mode::Sliding(1.0),
         };
-        let looks_ahead = matches!(
+        let takes_steps_ahead = matches!(
             &core,
-            Core::Regularized(equations, Solver::Adaptive(Adaptive::Radau5(_)))
+            Core::Regularized(equations, Solver::General(Method::Radau5(_)))
                 if !equations.plant.input
         );
         Ok(Oscillator {
             core,
-            looks_ahead,
+            takes_steps_ahead,
             ahead: None,
             ahead_limit: f64::MAX,
             state: State {
@@ -493,7 +401,7 @@ impl Oscillator {
                     } else {
                         t0 + self.max_substep
                     };
-                    if let Solver::Rk4(_) = solver {
+                    if let Solver::General(Method::Rk4(_)) = solver {
                         equations.require_rk4_stable(t1 - t0)?;
                     }
                     let piecewise = matches!(solver, Solver::Piecewise(_));
@@ -543,12 +451,12 @@ impl Oscillator {
     /// Answers a step ending at `t_end` from the step taken ahead, if there is one: inside it,
     /// from its polynomial (true); at or past its end, by going on from there (true if `t_end`
     /// is its end, to round-off; false if the loop must go on).
-    fn read_ahead(&mut self, t_end: f64) -> bool {
+    fn read_step_ahead(&mut self, t_end: f64) -> bool {
         let Some(ahead) = self.ahead else {
             return false;
         };
-        let slack = self.amplitude.slack(t_end);
-        if t_end < ahead.end[0] - slack {
+        let call = CallEnd::of(t_end, ahead.end[0], self.amplitude.slack(t_end));
+        if call == CallEnd::Inside {
             self.read_step(&ahead.step, t_end);
             return true;
         }
@@ -556,7 +464,7 @@ impl Oscillator {
         self.set_motion(ahead.end[0], &ahead.end[1..]);
         self.amplitude
             .add(ahead.largest, ahead.end[0], self.state.u.abs());
-        if t_end <= ahead.end[0] + slack {
+        if call == CallEnd::AtEnd {
             self.state.t = t_end;
             true
         } else {
@@ -610,8 +518,13 @@ impl Oscillator {
     /// `t_end` from it (true). False, with nothing changed but the work and that suggestion,
     /// where it may not, or its last step does not hold `t_end` (a rejection or a kink cut it),
     /// or its polynomial is not within the tolerance.
-    fn look_ahead(&mut self, t_end: f64, boundary: f64, at_start: &Work) -> Result<bool, String> {
-        let Core::Regularized(_, Solver::Adaptive(Adaptive::Radau5(radau))) = &mut self.core else {
+    fn take_step_ahead(
+        &mut self,
+        t_end: f64,
+        boundary: f64,
+        at_start: &Work,
+    ) -> Result<bool, String> {
+        let Core::Regularized(_, Solver::General(Method::Radau5(radau))) = &mut self.core else {
             return Ok(false);
         };
         let hints = (radau.h_next, radau.h_proposed);
@@ -619,7 +532,7 @@ impl Oscillator {
         let end = (t + hints.1.min(self.max_substep).min(self.ahead_limit)).min(boundary);
         // Only a step that holds several calls pays for its reading and for the steps a
         // proposal taken from a short call's last step has rejected.
-        if !self.looks_ahead || end - t < CALLS_AHEAD * (t_end - t) {
+        if !self.takes_steps_ahead || end - t < CALLS_AHEAD * (t_end - t) {
             return Ok(false);
         }
         // The step ahead is the one proposed, not the call's last cut to its span.
@@ -627,8 +540,7 @@ impl Oscillator {
         let before = self.state;
         let mut step = StepPolynomial::NONE;
         let largest = self.advance(end, None, at_start, Some(&mut step))?;
-        let Core::Regularized(equations, Solver::Adaptive(Adaptive::Radau5(radau))) =
-            &mut self.core
+        let Core::Regularized(equations, Solver::General(Method::Radau5(radau))) = &mut self.core
         else {
             return Ok(false);
         };
@@ -677,7 +589,7 @@ impl Oscillator {
         self.held = held;
         let t_end = self.state.t + h;
         let at_start = self.work;
-        let done = self.read_ahead(t_end);
+        let done = self.read_step_ahead(t_end);
         while !done && self.state.t < t_end {
             within_step_budget(&self.work, &at_start, self.state.t)?;
             let boundary = if self.tracks_amplitude {
@@ -694,7 +606,7 @@ impl Oscillator {
                 } else {
                     t_end
                 };
-            if segment_end == t_end && self.look_ahead(t_end, boundary, &at_start)? {
+            if segment_end == t_end && self.take_step_ahead(t_end, boundary, &at_start)? {
                 break;
             }
             let largest = self.advance(segment_end, log.as_deref_mut(), &at_start, None)?;
@@ -904,7 +816,7 @@ impl Simulation for Oscillator {
         };
         let name = match solver {
             Solver::Piecewise(_) => "piecewise (its dopri5 inside the band)",
-            _ => "dopri5",
+            Solver::General(m) => m.name(),
         };
         let t = solver.stiff_since()?;
         Some(super::stiff_warning(t, name, "radau5"))
@@ -941,7 +853,7 @@ impl Simulation for Oscillator {
             self.state.dissipated,
         ]);
         let proposed = match &self.core {
-            Core::Regularized(_, Solver::Adaptive(Adaptive::Radau5(radau))) => radau.h_proposed,
+            Core::Regularized(_, Solver::General(Method::Radau5(radau))) => radau.h_proposed,
             _ => 0.0,
         };
         out.extend_from_slice(&[proposed, self.ahead_limit]);
@@ -964,7 +876,7 @@ impl Simulation for Oscillator {
             0.0 => None,
             _ => {
                 let (step, rest) = ahead[1..].split_at(StepPolynomial::saved_len(3));
-                let step = StepPolynomial::read(3, step).filter(|_| self.looks_ahead);
+                let step = StepPolynomial::read(3, step).filter(|_| self.takes_steps_ahead);
                 let Some(step) = step else {
                     return Err(format!(
                         "a {} state holds a step taken ahead that this simulation cannot take",
@@ -993,7 +905,7 @@ impl Simulation for Oscillator {
                 self.amplitude.last = state[7];
                 if let Core::Regularized(_, solver) = &mut self.core {
                     solver.set_step_hint(state[8]);
-                    if let Solver::Adaptive(Adaptive::Radau5(radau)) = solver {
+                    if let Solver::General(Method::Radau5(radau)) = solver {
                         radau.h_proposed = proposed;
                     }
                 }

@@ -16,11 +16,18 @@
 
 mod ahead;
 mod axial;
+mod equations;
 mod exponential;
+mod solver;
 #[cfg(feature = "tools")]
 pub mod stability;
 pub mod table;
 mod two_phase;
+
+pub use equations::{tolerance_scales, Equations, Params};
+pub use solver::Solver;
+
+use equations::{band_coordinate, kink_switches, BAND};
 
 use super::input_scheme::{self, Extrapolator};
 use super::period_mean::PeriodMean;
@@ -30,20 +37,16 @@ use super::{
     require_finite, require_finite_start, require_non_negative, require_passive, require_positive,
     resolved_energy, Scope, Simulation,
 };
-use crate::friction::lugre2d::{radial_rates, Contact, LuGre2d, SlipLaw};
+use crate::friction::lugre2d::{LuGre2d, SlipLaw};
 use crate::models::transverse::table::vr;
-use crate::solve::adaptive::Adaptive;
-use crate::solve::dop853::Dop853;
-use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
-use crate::solve::narrow::Narrow;
-use crate::solve::phase::{cos_turns, turns};
-use crate::solve::radau::Radau5;
+use crate::solve::phase::turns;
 use crate::solve::rk4::Rk4;
 use crate::solve::shooting::{self, NoOrbit};
+use crate::solve::stepping::Stepping;
+use crate::solve::switching::Switching;
 use crate::solve::{within_step_budget, Integrator, Ode, Work, MAX_DIM};
 use crate::variables::values::ValueSet;
 use nalgebra::Vector2;
-use std::cell::Cell;
 use std::f64::consts::TAU;
 
 // The state: first what the right-hand side reads (the body's velocity, the drive spring, the
@@ -65,404 +68,6 @@ pub const W: usize = 6;
 pub const Q: usize = 7;
 pub const Y: usize = 8;
 
-/// Half-width of the band |v1 + v2| < BAND vs where ht and g vary; dopri5 ends steps on its
-/// edges and moves v1 + v2 by at most vs a step inside it ([`crate::solve::narrow`]), so the
-/// damping pulse there (tens of ns wide at the paper's values) is never stepped over.
-/// exp(-BAND^2) ~ 1e-7 outside.
-const BAND: f64 = 4.0;
-
-/// Where else, in multiples of vs, steps end inside the Stribeck band of a rate whose absolute
-/// value has a kink (v1 and v2 for the split law, v1 + v2 for the total law), when the
-/// tolerance asks for it ([`band_points`]). Inside the band g(v) rises to FS over a time of
-/// about vs / |v'| (a tenth of a microsecond at the paper's values), and the slip |v|/g(v) has
-/// a bump there that steps ending only on v = 0 span: the stages miss the bump and so does the
-/// error estimate, which leaves the split law an error floor in FFx_mean whatever the
-/// tolerance. Ends at 3 vs lower the floor, ends at vs and 3 vs let the error follow the
-/// tolerance, ends at 2 vs do not help (measured with benches/transverse.py: see
-/// docs/performance.md, "Benchmarks" and "Measurements behind the code").
-const BAND_POINTS_COARSE: [f64; 1] = [3.0];
-/// The band's step ends for the tightest tolerances: at vs too.
-const BAND_POINTS_FINE: [f64; 2] = [1.0, 3.0];
-
-/// The tolerance at and below which dopri5 ends steps at [`BAND_POINTS_COARSE`]. Above it the
-/// unresolved bump is within the tolerance and the step ends would only cost right-hand sides;
-/// at it they are what meets the tolerance (split law, the benchmark's case: errors and
-/// costs with and without them in docs/performance.md, "Measurements behind the code").
-const DOPRI5_COARSE_BAND_RTOL: f64 = 3e-7;
-
-/// The tolerance at and below which dopri5 ends steps at [`BAND_POINTS_FINE`] instead: there
-/// the coarse ends' error floor is no longer well inside the tolerance. Above it the coarse
-/// ends cost fewer right-hand sides and fewer kinks to foresee for about the fine ends' error,
-/// at the paper's larger amplitudes too (docs/performance.md, "Measurements behind the code").
-const DOPRI5_FINE_BAND_RTOL: f64 = 1e-7;
-
-/// radau5 ends steps at [`BAND_POINTS_FINE`] from this tolerance down: above it radau5 meets
-/// the tolerance without them, and they would only cost it right-hand sides
-/// (docs/performance.md, "Measurements behind the code").
-const RADAU5_FINE_BAND_RTOL: f64 = 1e-7;
-
-/// The points inside the Stribeck band where `solver` ends steps: set by the tolerance for the
-/// adaptive solvers, none for the others.
-fn band_points(solver: &Solver) -> &'static [f64] {
-    match solver {
-        Solver::Adaptive(Adaptive::Dopri5(Dopri5 { rtol, .. }))
-        | Solver::Dop853(Dop853 { rtol, .. })
-            if *rtol <= DOPRI5_FINE_BAND_RTOL =>
-        {
-            &BAND_POINTS_FINE
-        }
-        Solver::Adaptive(Adaptive::Dopri5(Dopri5 { rtol, .. }))
-        | Solver::Dop853(Dop853 { rtol, .. })
-            if *rtol <= DOPRI5_COARSE_BAND_RTOL =>
-        {
-            &BAND_POINTS_COARSE
-        }
-        Solver::Adaptive(Adaptive::Radau5(r)) if r.rtol <= RADAU5_FINE_BAND_RTOL => {
-            &BAND_POINTS_FINE
-        }
-        _ => &[],
-    }
-}
-
-/// The damping band's coordinate (the rate in units of vs) read off its edges, switches 0 and
-/// 1 of both the plane and the axial equations: the narrow feature dopri5 and radau5 watch.
-#[inline]
-fn band_coordinate(sw: &[f64; MAX_SWITCHES], vs: f64) -> Narrow {
-    Narrow {
-        r: 0.5 * (sw[0] + sw[1]) / vs,
-        band: BAND,
-    }
-}
-
-/// Writes, from `out[k]`, the switching functions of a rate `v` whose absolute value has a
-/// kink: v itself and v -+ m vs for the band's `points` ([`band_points`]). Returns the next
-/// free index.
-#[inline]
-fn kink_switches(
-    v: f64,
-    vs: f64,
-    points: &[f64],
-    out: &mut [f64; MAX_SWITCHES],
-    k: usize,
-) -> usize {
-    out[k] = v;
-    let mut k = k + 1;
-    for &m in points {
-        out[k] = v - m * vs;
-        out[k + 1] = v + m * vs;
-        k += 2;
-    }
-    k
-}
-
-/// Switching function `j` of those [`kink_switches`] writes for the rate `v` from its first
-/// index: v itself, then v -+ m vs for each of the band's `points`.
-#[inline]
-fn kink_switch(v: f64, vs: f64, points: &[f64], j: usize) -> f64 {
-    match j {
-        0 => v,
-        _ => {
-            let m = points[(j - 1) / 2];
-            if j % 2 == 1 {
-                v - m * vs
-            } else {
-                v + m * vs
-            }
-        }
-    }
-}
-
-/// Everything the equations need, fixed at build time.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Params {
-    pub law: LuGre2d,
-    pub slip: SlipLaw,
-    pub m: f64,
-    pub kd: f64,
-    pub hd: f64,
-    pub eta: f64,
-    pub va: f64,
-    pub f: f64,
-    /// Body held at x = y = 0 (Fig. 4b).
-    pub held: bool,
-    /// The support's phase, in turns, at the simulation's current time. The equations run on the
-    /// time since then, so that neither the forcing's phase nor the solvers' steps lose digits
-    /// to a large start time.
-    pub phase0: f64,
-}
-
-impl Params {
-    /// The velocity of the contact point M carried by the support: eta * (0, yp'), `t` after
-    /// the simulation's current time (as every time these equations take).
-    #[inline]
-    pub fn support_velocity(&self, t: f64) -> Vector2<f64> {
-        Vector2::new(
-            0.0,
-            self.eta * self.va * cos_turns(self.phase0 + t * self.f),
-        )
-    }
-
-    /// Support displacement yp = u0 sin(wt), u0 = va/w.
-    pub fn support_position(&self, t: f64) -> f64 {
-        self.va / (TAU * self.f) * (TAU * (self.phase0 + t * self.f).fract()).sin()
-    }
-
-    /// Moves the time origin of the equations to the absolute time `t`.
-    fn set_time(&mut self, t: f64) {
-        self.phase0 = turns(t, self.f);
-    }
-
-    #[inline]
-    fn body_velocity(&self, y: &[f64]) -> Vector2<f64> {
-        if self.held {
-            Vector2::zeros()
-        } else {
-            Vector2::new(y[VX], y[VY])
-        }
-    }
-
-    /// The angular frequency of the body on the stuck contact and the drive, sqrt((kt + kd)/m):
-    /// the fastest motion an explicit step of the mechanics must resolve (none when held).
-    pub fn sticking_frequency(&self) -> f64 {
-        if self.held {
-            0.0
-        } else {
-            ((self.law.kt + self.kd) / self.m).sqrt()
-        }
-    }
-
-    #[inline]
-    pub fn contact(&self, t: f64, y: &[f64]) -> Contact {
-        self.contact_moving(y, self.support_velocity(t))
-    }
-
-    /// The contact with the support point moving at `v_m`.
-    #[inline]
-    fn contact_moving(&self, y: &[f64], v_m: Vector2<f64>) -> Contact {
-        self.law.contact(
-            self.slip,
-            Vector2::new(y[ZX], y[ZY]),
-            self.body_velocity(y),
-            v_m,
-        )
-    }
-
-    /// The radial rates (v1, v2) alone, for the switching functions, with the support point
-    /// moving at `v_m`.
-    #[inline]
-    fn radial_rates(&self, y: &[f64], v_m: Vector2<f64>) -> (f64, f64) {
-        let (_, v1, v2) = radial_rates(Vector2::new(y[ZX], y[ZY]), self.body_velocity(y), v_m);
-        (v1, v2)
-    }
-
-    pub fn drive_force(&self, y: &[f64], vd: f64) -> f64 {
-        let vx = if self.held { 0.0 } else { y[VX] };
-        self.kd * y[LAMBDA] + self.hd * (vd - vx)
-    }
-}
-
-/// Absolute tolerances on the scale of each state, per unit of rtol: the deflection FC/kt, the
-/// velocities in play (drive velocity `vd`), a period's worth of the force integral. The work is
-/// left out of the error control (infinite): the steps the motion needs integrate it to the same
-/// order. The force integral stays in it also when the mean is not read (q stays in the planar
-/// state): its error control keeps the force as accurate as in the full model (ten times less
-/// without, at rtol 1e-9 in stick-slip at 3 kHz).
-pub fn tolerance_scales(p: &Params, vd: f64) -> [f64; MAX_DIM] {
-    let law = &p.law;
-    let z0 = law.fc / law.kt;
-    let speed = vd.abs() + p.va + law.vs;
-    let mut scale = [0.0; MAX_DIM];
-    scale[X] = z0;
-    scale[VX] = speed;
-    scale[Y] = z0;
-    scale[VY] = speed;
-    scale[ZX] = z0;
-    scale[ZY] = z0;
-    scale[LAMBDA] = if p.kd > 0.0 { law.fc / p.kd } else { z0 };
-    scale[Q] = law.fc / p.f;
-    scale[W] = f64::INFINITY;
-    scale
-}
-
-/// The continuous-time ODE with the drive velocity `vd(t)`.
-pub struct Equations<'a> {
-    p: &'a Params,
-    vd: Ramp,
-    /// Where steps also end inside the Stribeck band ([`band_points`]).
-    band_points: &'static [f64],
-    /// The support velocity at the last time asked for: dopri5's last two stages and the
-    /// switching functions after them all fall on the step's end, and the cos is a fifth of a
-    /// right-hand side.
-    last_support: Cell<(f64, Vector2<f64>)>,
-}
-
-impl<'a> Equations<'a> {
-    pub fn new(p: &'a Params, vd: Ramp, band_points: &'static [f64]) -> Self {
-        Equations {
-            p,
-            vd,
-            band_points,
-            // NaN: equal to no time.
-            last_support: Cell::new((f64::NAN, Vector2::zeros())),
-        }
-    }
-
-    /// `Params::support_velocity`, remembered for one time. Always inlined, with its cos: the
-    /// compiler leaves both as calls otherwise, which makes a step measurably dearer
-    /// (docs/performance.md, "Measurements behind the code").
-    #[inline(always)]
-    fn support_velocity(&self, t: f64) -> Vector2<f64> {
-        let (t_last, v_last) = self.last_support.get();
-        if t == t_last {
-            return v_last;
-        }
-        let v = self.p.support_velocity(t);
-        self.last_support.set((t, v));
-        v
-    }
-}
-
-impl Ode for Equations<'_> {
-    fn dim(&self) -> usize {
-        DIM
-    }
-
-    fn coupled(&self) -> usize {
-        COUPLED
-    }
-
-    #[inline]
-    fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
-        let p = self.p;
-        let c = p.contact_moving(y, self.support_velocity(t));
-        let vd = self.vd.at(t);
-        if p.held {
-            for j in [X, VX, Y, VY] {
-                dydt[j] = 0.0;
-            }
-            dydt[LAMBDA] = vd;
-        } else {
-            let fd = p.drive_force(y, vd);
-            // One division for both accelerations.
-            let inv_m = 1.0 / p.m;
-            dydt[X] = y[VX];
-            dydt[VX] = (fd - c.ffx()) * inv_m;
-            dydt[Y] = y[VY];
-            dydt[VY] = c.ffy() * inv_m;
-            dydt[LAMBDA] = vd - y[VX];
-        }
-        dydt[ZX] = c.zdot.x;
-        dydt[ZY] = c.zdot.y;
-        dydt[Q] = c.ffx();
-        dydt[W] = c.ff * (c.v1 + c.v2);
-    }
-}
-
-impl Switching for Equations<'_> {
-    #[inline]
-    fn switches(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
-        let (v1, v2) = self.p.radial_rates(y, self.support_velocity(t));
-        self.switches_of(v1, v2, out)
-    }
-
-    #[inline]
-    fn switch(&self, t: f64, y: &[f64], i: usize) -> f64 {
-        let (v1, v2) = self.p.radial_rates(y, self.support_velocity(t));
-        self.switch_of(v1, v2, i)
-    }
-
-    /// The bristle relaxes at the slip rate: z' = w - slip z.
-    #[inline]
-    fn switches_and_decay(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> (usize, f64) {
-        let (v1, v2) = self.p.radial_rates(y, self.support_velocity(t));
-        let slip = self.p.law.slip(self.p.slip, v1, v2);
-        (self.switches_of(v1, v2, out), slip)
-    }
-
-    fn decaying(&self) -> &[usize] {
-        &[ZX, ZY]
-    }
-
-    /// The total law's slip rate |v1 + v2| / g follows the vibration smoothly between its
-    /// kinks. Frozen at a step's middle rather than its start, it gives FFx_mean in the steady
-    /// vibration with less error for the same work (over a transient from the start it is
-    /// neither better nor worse). The split law's error is set by the Stribeck band's bump
-    /// instead, and there the middle costs more at equal error. Measured on the benchmark's
-    /// case: docs/performance.md, "Benchmarks" and "Measurements behind the code".
-    fn decay_follows_trend(&self) -> bool {
-        self.p.slip == SlipLaw::Total
-    }
-
-    /// v1 + v2 in units of vs, from the band's edges (`switches_of`): the damping's pulse
-    /// ht(v1 + v2) sdot. Where the body turns, v1 + v2 can also dip into the band and out again
-    /// between two step ends, which the edges alone do not see.
-    #[inline]
-    fn narrow(&self, sw: &[f64; MAX_SWITCHES]) -> Option<Narrow> {
-        Some(band_coordinate(sw, self.p.law.vs))
-    }
-}
-
-impl Equations<'_> {
-    #[inline]
-    fn switches_of(&self, v1: f64, v2: f64, out: &mut [f64; MAX_SWITCHES]) -> usize {
-        let vr = v1 + v2;
-        let vs = self.p.law.vs;
-        let band = BAND * vs;
-        out[0] = vr - band;
-        out[1] = vr + band;
-        let points = self.band_points;
-        match self.p.slip {
-            // |v1| and |v2| have kinks.
-            SlipLaw::Split => {
-                let k = kink_switches(v1, vs, points, out, 2);
-                kink_switches(v2, vs, points, out, k)
-            }
-            SlipLaw::Total => kink_switches(vr, vs, points, out, 2),
-        }
-    }
-
-    /// `switches_of(v1, v2)[i]` alone.
-    #[inline]
-    fn switch_of(&self, v1: f64, v2: f64, i: usize) -> f64 {
-        let vr = v1 + v2;
-        let vs = self.p.law.vs;
-        let points = self.band_points;
-        match (i, self.p.slip) {
-            (0, _) => vr - BAND * vs,
-            (1, _) => vr + BAND * vs,
-            (_, SlipLaw::Split) => {
-                let family = 1 + 2 * points.len();
-                if i - 2 < family {
-                    kink_switch(v1, vs, points, i - 2)
-                } else {
-                    kink_switch(v2, vs, points, i - 2 - family)
-                }
-            }
-            (_, SlipLaw::Total) => kink_switch(vr, vs, points, i - 2),
-        }
-    }
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub enum Solver {
-    Adaptive(Adaptive),
-    Dop853(Dop853),
-    Rk4 { steps_per_period: u32 },
-    TwoPhase(two_phase::TwoPhase),
-    Exponential(exponential::Exponential),
-}
-
-impl Solver {
-    /// The relative tolerance of an adaptive solver.
-    fn rtol(&self) -> Option<f64> {
-        match self {
-            Solver::Adaptive(a) => Some(a.rtol()),
-            Solver::Dop853(d) => Some(d.rtol),
-            Solver::Rk4 { .. } | Solver::TwoPhase(_) | Solver::Exponential(_) => None,
-        }
-    }
-}
-
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Drive {
     Prescribed(f64),
@@ -474,6 +79,8 @@ pub struct Transverse {
     pub p: Params,
     pub drive: Drive,
     pub solver: Solver,
+    /// The points inside the Stribeck band where the solver ends steps ([`solver::band_points`]).
+    band_points: &'static [f64],
     /// Coulomb force FC = mu m g, the scale of the outputs.
     pub fc: f64,
     start_time: f64,
@@ -734,47 +341,13 @@ impl Transverse {
 
         let name = TransverseSolver::read(values, vr::SOLVER)?;
         let trim = Trim::of(scope, values, name);
-        let solver = match name {
-            TransverseSolver::Rk4 => Solver::Rk4 {
-                steps_per_period: steps,
-            },
-            TransverseSolver::TwoPhase => {
-                Solver::TwoPhase(two_phase::TwoPhase::new(&p, start_time, &y, steps))
-            }
-            TransverseSolver::Exponential => Solver::Exponential(exponential::Exponential {
-                steps_per_period: steps,
-            }),
-            TransverseSolver::Dopri5 | TransverseSolver::Radau5 | TransverseSolver::Dop853 => {
-                // The parameter vd, the drive's nominal velocity, with an input drive too, not
-                // vd_in's value at the build: fmi2SetFMUstate builds again with the value then,
-                // and a restored run must take the steps the first one took.
-                let mut scale = tolerance_scales(&p, vd);
-                if trim.axial {
-                    // The 1D equations leave the y axis at rest: out of the error control, so
-                    // that its zeros do not dilute the others' errors.
-                    scale[VY] = f64::INFINITY;
-                    scale[ZY] = f64::INFINITY;
-                }
-                if name == TransverseSolver::Radau5 {
-                    let mut radau = Radau5::new(rtol, rtol, 0.05 / f);
-                    radau.atol_scale = scale;
-                    Solver::Adaptive(Adaptive::Radau5(radau))
-                } else if name == TransverseSolver::Dop853 {
-                    Solver::Dop853(Dop853::new(rtol, scale.map(|s| rtol * s), 0.05 / f))
-                } else {
-                    Solver::Adaptive(Adaptive::Dopri5(Dopri5::new(
-                        rtol,
-                        scale.map(|s| rtol * s),
-                        0.05 / f,
-                    )))
-                }
-            }
-        };
+        let solver = Solver::new(name, &p, (start_time, &y), steps, (rtol, vd), trim.axial);
 
         Ok(Transverse {
             p,
             drive,
             solver,
+            band_points: solver::band_points(name, rtol),
             fc,
             start_time,
             t: start_time,
@@ -890,7 +463,7 @@ impl Transverse {
         // the interval for a real one and refine it).
         let round_off = super::within_round_off(start, end);
         self.y[Q] = 0.0;
-        let band_points = band_points(&self.solver);
+        let band_points = self.band_points;
         let planar = Equations::new(&self.p, vd, band_points);
         let axial = axial::Axial {
             p: &self.p,
@@ -900,7 +473,7 @@ impl Transverse {
         };
         let eq: &dyn Switching = if self.trim.axial { &axial } else { &planar };
         match &mut self.solver {
-            Solver::Adaptive(_) | Solver::Dop853(_) if round_off => {
+            Solver::General(_) if round_off => {
                 let mut rk = Rk4 {
                     h_max: f64::INFINITY,
                 };
@@ -909,27 +482,10 @@ impl Transverse {
             // On the equations' own types rather than through `eq`: the contact then inlines
             // into the right-hand side, and the step takes fewer instructions
             // (docs/performance.md, "Measurements behind the code").
-            Solver::Adaptive(Adaptive::Dopri5(d)) if self.trim.axial => {
-                d.integrate_switched(&axial, t0, t1, &mut self.y, &mut self.work)?
+            Solver::General(m) if self.trim.axial => {
+                m.advance(&axial, (t0, t1), &mut self.y, &mut self.work)?
             }
-            Solver::Adaptive(Adaptive::Dopri5(d)) => {
-                d.integrate_switched(&planar, t0, t1, &mut self.y, &mut self.work)?
-            }
-            Solver::Adaptive(Adaptive::Radau5(r)) => {
-                r.integrate_switched(eq, t0, t1, &mut self.y, &mut self.work)?
-            }
-            Solver::Dop853(d) if self.trim.axial => {
-                d.integrate_switched(&axial, t0, t1, &mut self.y, &mut self.work)?
-            }
-            Solver::Dop853(d) => {
-                d.integrate_switched(&planar, t0, t1, &mut self.y, &mut self.work)?
-            }
-            Solver::Rk4 { steps_per_period } => {
-                let mut rk = Rk4 {
-                    h_max: 1.0 / (self.p.f * f64::from(*steps_per_period)),
-                };
-                rk.integrate(eq, t0, t1, &mut self.y, &mut self.work)?;
-            }
+            Solver::General(m) => m.advance(&planar, (t0, t1), &mut self.y, &mut self.work)?,
             Solver::TwoPhase(tp) => {
                 tp.advance(&self.p, vd, (origin, t0, t1), &mut self.y, &mut self.work)?;
             }
@@ -975,7 +531,7 @@ impl Simulation for Transverse {
         let at_start = self.work;
         // The step taken ahead that the call read to its end, which the next goes on from.
         let mut behind = None;
-        let mut done = self.read_ahead(t_end, &mut behind);
+        let mut done = self.read_step_ahead(t_end, &mut behind);
         if self.t != start && !done {
             // The call goes on from the end of the step taken ahead.
             self.p.set_time(self.t);
@@ -998,8 +554,8 @@ impl Simulation for Transverse {
                 t_end
             };
             let next = if next > t { next } else { t_end };
-            if next == t_end && self.look_ahead((t, t_end, boundary), behind.take())? {
-                done = self.read_ahead(t_end, &mut behind);
+            if next == t_end && self.take_step_ahead((t, t_end, boundary), behind.take())? {
+                done = self.read_step_ahead(t_end, &mut behind);
                 if !done {
                     // The step ended short of the call (on a kink): on from its end.
                     (origin, t) = (self.t, self.t);
@@ -1023,7 +579,7 @@ impl Simulation for Transverse {
     }
 
     fn read_inside(&mut self, h: f64) -> bool {
-        self.read_inside_ahead(h)
+        self.read_inside_step_ahead(h)
     }
 
     fn write_outputs(&self, values: &mut ValueSet) {
@@ -1055,9 +611,8 @@ impl Simulation for Transverse {
             return Some(unstable);
         }
         let (t, name) = match &mut self.solver {
-            Solver::Adaptive(a) => (a.stiff_since(), "dopri5"),
-            Solver::Dop853(d) => (d.stiff_since(), "dop853"),
-            Solver::Rk4 { .. } | Solver::TwoPhase(_) | Solver::Exponential(_) => (None, ""),
+            Solver::General(m) => (m.stiff_since(), m.name()),
+            Solver::TwoPhase(_) | Solver::Exponential(_) => (None, ""),
         };
         Some(super::stiff_warning(t?, name, "radau5 or exponential"))
     }
@@ -1076,31 +631,28 @@ impl Simulation for Transverse {
         self.vd_input.save(out);
         out.extend_from_slice(&self.y);
         out.extend_from_slice(&self.mean.save());
-        match &self.solver {
-            Solver::Adaptive(a) => {
-                out.push(a.step_hint());
-                self.save_ahead(out);
-            }
-            Solver::Dop853(d) => out.push(d.h),
-            Solver::Rk4 { .. } | Solver::Exponential(_) => out.push(0.0),
-            Solver::TwoPhase(tp) => out.extend_from_slice(&tp.save()),
+        self.solver.save_into(out);
+        if self.saves_ahead() {
+            self.save_ahead(out);
         }
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), String> {
         let base = 2 + input_scheme::SAVED + MAX_DIM + 3;
-        let extra = match &self.solver {
-            Solver::TwoPhase(_) => two_phase::SAVED,
-            // The step hint and the step taken ahead, if any (a flag first).
-            Solver::Adaptive(_) => match state.get(base + 1) {
-                Some(1.0) => 2 + ahead::SAVED,
-                _ => 2,
-            },
+        let solver = base + self.solver.saved_len();
+        // The step taken ahead, if any (a flag first).
+        let ahead = match state.get(solver) {
+            _ if !self.saves_ahead() => 0,
+            Some(1.0) => 1 + ahead::SAVED,
             _ => 1,
         };
-        super::check_saved("TransverseFriction (with this solver)", state, base + extra)?;
-        if let Solver::Adaptive(_) = self.solver {
-            self.restore_ahead(&state[base + 1..])?;
+        super::check_saved(
+            "TransverseFriction (with this solver)",
+            state,
+            solver + ahead,
+        )?;
+        if self.saves_ahead() {
+            self.restore_ahead(&state[solver..])?;
         }
         self.t = state[0];
         self.p.set_time(self.t);
@@ -1109,12 +661,7 @@ impl Simulation for Transverse {
         self.vd_input.restore(&state[2..y])?;
         self.y.copy_from_slice(&state[y..y + MAX_DIM]);
         self.mean.restore(&state[y + MAX_DIM..base]);
-        match &mut self.solver {
-            Solver::Adaptive(a) => a.set_step_hint(state[base]),
-            Solver::Dop853(d) => d.h = state[base],
-            Solver::Rk4 { .. } | Solver::Exponential(_) => {}
-            Solver::TwoPhase(tp) => tp.restore(&state[base..]),
-        }
+        self.solver.restore(&state[base..solver]);
         Ok(())
     }
 
@@ -1234,4 +781,4 @@ impl Transverse {
 mod tests;
 
 #[cfg(test)]
-mod drive_input_tests;
+mod input_tests;

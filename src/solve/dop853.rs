@@ -12,9 +12,10 @@
 //! retaken to end on it: no kink is foreseen from the step before, so where kinks come every
 //! few steps (the split law) dopri5 is cheaper.
 
-use super::dopri::{crossed, Smooth, Switching, MAX_SWITCHES};
 use super::narrow::{Verdict, Watch};
+use super::stepping::Stepping;
 use super::stiffness::StiffnessTest;
+use super::switching::{crossed, Smooth, Switching, MAX_SWITCHES};
 use super::{Integrator, Ode, Work, MAX_DIM};
 
 /// The nodes: the twelve stages of a step, the end (where the next step's first stage is
@@ -859,6 +860,33 @@ impl Dop853 {
         } else {
             0.0
         }
+    }
+}
+
+impl Stepping for Dop853 {
+    fn name(&self) -> &'static str {
+        "dop853"
+    }
+    fn tolerance(&self) -> Option<f64> {
+        Some(self.rtol)
+    }
+    fn step_hint(&self) -> f64 {
+        self.h
+    }
+    fn set_step_hint(&mut self, h: f64) {
+        self.h = h;
+    }
+    fn stiff_since(&mut self) -> Option<f64> {
+        Dop853::stiff_since(self)
+    }
+    fn advance<S: Switching>(
+        &mut self,
+        ode: &S,
+        (t0, t1): (f64, f64),
+        y: &mut [f64],
+        work: &mut Work,
+    ) -> Result<(), String> {
+        self.integrate_switched(ode, t0, t1, y, work)
     }
 }
 

@@ -19,62 +19,10 @@ mod ahead;
 pub use ahead::{Carry, StepAhead, CARRY_SAVED, SAVED_LEN as STEP_AHEAD_SAVED};
 
 use super::narrow::{Narrow, Verdict, Watch};
+use super::stepping::Stepping;
 use super::stiffness::StiffnessTest;
+use super::switching::{crossed, Smooth, Switching, MAX_SWITCHES};
 use super::{Integrator, Ode, Work, MAX_DIM};
-
-/// The most switching functions an ODE may report.
-pub const MAX_SWITCHES: usize = 12;
-
-/// An ODE whose right-hand side is smooth except where one of a few functions of (t, y) is zero.
-pub trait Switching: Ode {
-    /// Writes the switching functions into `out`; returns how many there are. They read the
-    /// coupled states alone ([`Ode::coupled`]): the solvers locate kinks on an interpolant of
-    /// those.
-    fn switches(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize;
-
-    /// Switching function `i` alone, as [`Switching::switches`] writes it; an ODE with many
-    /// switches gives it for less, since a kink's root finder asks for one at a time.
-    fn switch(&self, t: f64, y: &[f64], i: usize) -> f64 {
-        let mut out = [0.0; MAX_SWITCHES];
-        self.switches(t, y, &mut out);
-        out[i]
-    }
-
-    /// The switching functions, and the rate sigma >= 0 at which the components
-    /// [`Switching::decaying`] relax now (their right-hand side holds a term -sigma y_j).
-    fn switches_and_decay(&self, t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> (usize, f64) {
-        (self.switches(t, y, out), 0.0)
-    }
-
-    /// The components (at most [`MAX_DECAYING`]) whose linear decay dopri5 takes exactly
-    /// within each step, at a rate frozen over it (Lawson's integrating factor): that of the
-    /// step's start, or of its middle ([`Switching::decay_follows_trend`]).
-    fn decaying(&self) -> &[usize] {
-        &[]
-    }
-
-    /// Whether the right-hand side stays C1 where switch `i` changes sign (only its second
-    /// derivative jumps): [`Dopri5::integrate_to_kink`] then lets a step across it stand when
-    /// the step passes its error test, and stops a little past the kink instead of retaking the
-    /// step to end on it.
-    fn smooth_across(&self, _i: usize) -> bool {
-        false
-    }
-
-    /// Whether the decay rate's trend over the last step foretells it over the next (it varies
-    /// smoothly along the solution between the switches): dopri5 then freezes the rate at the
-    /// middle of each step, extrapolated, instead of at its start.
-    fn decay_follows_trend(&self) -> bool {
-        false
-    }
-
-    /// The coordinate of a narrow feature of the right-hand side ([`crate::solve::narrow`]),
-    /// from the switching functions' values at a point: steps that pass through its band are
-    /// held short enough for the stages to sample it. None: no such feature.
-    fn narrow(&self, _switches: &[f64; MAX_SWITCHES]) -> Option<Narrow> {
-        None
-    }
-}
 
 /// The most components a step may integrate with an integrating factor.
 pub const MAX_DECAYING: usize = 2;
@@ -120,27 +68,6 @@ const MAX_DECAY_PER_STEP: f64 = 30.0;
 /// starts on the kink of the slip |v|): y - c then loses the digits the tolerance asks for (scene
 /// T, total law at va 12 mm/s: FFx_mean off by up to 1.4e-4 at rtol 1e-8 to 1e-13).
 const MIN_DECAY_PER_STEP: f64 = 1e-3;
-
-/// No switching functions: plain Dormand-Prince.
-pub(super) struct Smooth<'a>(pub(super) &'a dyn Ode);
-
-impl Ode for Smooth<'_> {
-    fn dim(&self) -> usize {
-        self.0.dim()
-    }
-    fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
-        self.0.rhs(t, y, dydt)
-    }
-    fn coupled(&self) -> usize {
-        self.0.coupled()
-    }
-}
-
-impl Switching for Smooth<'_> {
-    fn switches(&self, _t: f64, _y: &[f64], _out: &mut [f64; MAX_SWITCHES]) -> usize {
-        0
-    }
-}
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Dopri5 {
@@ -432,12 +359,6 @@ fn stage_factors(x: f64) -> [f64; 7] {
     [1.0, q18, q27, q72, q80, q90, q90]
 }
 
-/// Has the switching function gone from `old` to `new` across zero? An old value of exactly 0
-/// (the step started on the switch) does not count.
-pub(super) fn crossed(old: f64, new: f64) -> bool {
-    old != 0.0 && (new == 0.0 || (new > 0.0) != (old > 0.0))
-}
-
 /// A run that stops at the end of the first accepted step reaching `past`, holding the step
 /// and what the next may go on with in `slot`; it goes on `from` the last step taken ahead,
 /// where given ([`Dopri5::step_ahead`]).
@@ -445,6 +366,17 @@ struct AheadRun<'a> {
     past: f64,
     from: Option<(&'a Carry, &'a StepAhead)>,
     slot: &'a mut Option<(StepAhead, Carry)>,
+}
+
+/// Where a run stops, short of an error.
+enum Stop<'a> {
+    /// At the interval's end.
+    End,
+    /// At the end of the first step that ends on a kink (or at the interval's end), the number
+    /// taking the largest |y[0]| met ([`Dopri5::integrate_to_kink`]).
+    Kink(&'a mut f64),
+    /// At the end of the first accepted step that reaches a time ([`AheadRun`]).
+    Ahead(AheadRun<'a>),
 }
 
 /// The last step taken ahead, as the run going on from its end sees it: its start and length
@@ -796,7 +728,7 @@ impl Dopri5 {
         y: &mut [f64],
         work: &mut Work,
     ) -> Result<(), String> {
-        self.run(ode, (t0, t1), y, work, None, None).map(|_| ())
+        self.run(ode, (t0, t1), y, work, Stop::End).map(|_| ())
     }
 
     /// Integrates from `t0` towards `t1` up to the end of the first step that reaches `past`
@@ -821,7 +753,7 @@ impl Dopri5 {
                 from,
                 slot: &mut slot,
             };
-            self.run(ode, (t0, t1), y, work, None, Some(ahead))?
+            self.run(ode, (t0, t1), y, work, Stop::Ahead(ahead))?
         } else {
             t0
         };
@@ -843,19 +775,17 @@ impl Dopri5 {
         work: &mut Work,
         largest: &mut f64,
     ) -> Result<f64, String> {
-        self.run(ode, (t0, t1), y, work, Some(largest), None)
+        self.run(ode, (t0, t1), y, work, Stop::Kink(largest))
     }
 
-    /// The integration; with `stop` (the largest |y[0]| met so far), up to the first kink it
-    /// stops at; with `ahead`, up to the end of the first accepted step that reaches its time.
+    /// The integration, up to where `stop` says.
     fn run<S: Switching + ?Sized>(
         &mut self,
         ode: &S,
         (t0, t1): (f64, f64),
         y: &mut [f64],
         work: &mut Work,
-        mut stop: Option<&mut f64>,
-        mut ahead: Option<AheadRun>,
+        mut stop: Stop,
     ) -> Result<f64, String> {
         let n = ode.dim();
         if n > MAX_DIM || y.len() < n {
@@ -870,7 +800,7 @@ impl Dopri5 {
                 self.rtol, self.h_max
             ));
         }
-        if stop.is_some() && ode.decaying().contains(&0) {
+        if matches!(stop, Stop::Kink(_)) && ode.decaying().contains(&0) {
             return Err(
                 "dopri5: integrate_to_kink reads the extremes of y[0] off the interpolant, which is no polynomial where y[0] decays under the integrating factor".into(),
             );
@@ -881,7 +811,10 @@ impl Dopri5 {
         let span = t1 - t0;
         // Steps shorter than this are round-off in t.
         let h_tiny = 16.0 * f64::EPSILON * t0.abs().max(t1.abs()).max(span);
-        let from = ahead.as_ref().and_then(|a| a.from);
+        let from = match &stop {
+            Stop::Ahead(a) => a.from,
+            _ => None,
+        };
         let mut k1 = [0.0; MAX_DIM];
         match from {
             Some((carry, _)) => k1 = carry.k1,
@@ -983,7 +916,7 @@ impl Dopri5 {
             // A step that crossed only kinks where the right-hand side stays C1 and passed its
             // error test stands where it stops there (it stops a little past them): where they
             // lie is not needed.
-            let across = stop.is_some()
+            let across = matches!(stop, Stop::Kink(_))
                 && tr.err <= 1.0
                 && (0..count).all(|i| !crossed(sw_old[i], sw_new[i]) || ode.smooth_across(i));
             for i in 0..count {
@@ -1124,7 +1057,8 @@ impl Dopri5 {
             if let Some(cap) = cap {
                 self.h = self.h.min(cap);
             }
-            if let Some(largest) = stop.as_deref_mut() {
+            if let Stop::Kink(largest) = &mut stop {
+                let largest: &mut f64 = largest;
                 *largest = largest.max(y[0].abs());
                 if rate_at_start * k1[0] < 0.0 {
                     let dense = Dense::new(coupled, &y_start[..coupled], &tr, h_taken);
@@ -1134,7 +1068,7 @@ impl Dopri5 {
                     return Ok(t);
                 }
             }
-            if let Some(a) = &mut ahead {
+            if let Stop::Ahead(a) = &mut stop {
                 if t >= a.past {
                     let step = StepAhead::new(ode, (t_start, &y_start[..n]), &tr, h_taken, work);
                     let carry = Carry {
@@ -1206,6 +1140,33 @@ impl Dopri5 {
             0.01 * (d0 / d1).sqrt()
         };
         h.min(span).min(self.h_max) * self.rtol.powf(0.2).max(1e-3)
+    }
+}
+
+impl Stepping for Dopri5 {
+    fn name(&self) -> &'static str {
+        "dopri5"
+    }
+    fn tolerance(&self) -> Option<f64> {
+        Some(self.rtol)
+    }
+    fn step_hint(&self) -> f64 {
+        self.h
+    }
+    fn set_step_hint(&mut self, h: f64) {
+        self.h = h;
+    }
+    fn stiff_since(&mut self) -> Option<f64> {
+        Dopri5::stiff_since(self)
+    }
+    fn advance<S: Switching>(
+        &mut self,
+        ode: &S,
+        (t0, t1): (f64, f64),
+        y: &mut [f64],
+        work: &mut Work,
+    ) -> Result<(), String> {
+        self.integrate_switched(ode, t0, t1, y, work)
     }
 }
 

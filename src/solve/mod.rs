@@ -4,11 +4,11 @@
 //! Integrators keep their scratch space inline (systems have at most [`MAX_DIM`] states), so a
 //! doStep never allocates.
 
-pub mod adaptive;
 pub mod dense;
 pub mod dop853;
 pub mod dopri;
 pub mod expm;
+pub mod method;
 pub mod narrow;
 pub mod phase;
 pub mod quadrature;
@@ -16,7 +16,9 @@ pub mod radau;
 pub mod rk4;
 pub mod root;
 pub mod shooting;
+pub mod stepping;
 pub mod stiffness;
+pub mod switching;
 #[cfg(test)]
 mod test_odes;
 

@@ -20,8 +20,9 @@
 //! the extra filtered re-evaluation after a rejection.
 
 use super::dense::{lu_factor, lu_solve};
-use super::dopri::{Switching, MAX_SWITCHES};
 use super::narrow::{Verdict, Watch};
+use super::stepping::Stepping;
+use super::switching::{Switching, MAX_SWITCHES};
 use super::{Integrator, Ode, Work, MAX_DIM};
 
 const STAGES: usize = 3;
@@ -537,6 +538,30 @@ impl Radau5 {
             previous = norm;
         }
         false
+    }
+}
+
+impl Stepping for Radau5 {
+    fn name(&self) -> &'static str {
+        "radau5"
+    }
+    fn tolerance(&self) -> Option<f64> {
+        Some(self.rtol)
+    }
+    fn step_hint(&self) -> f64 {
+        self.h_next
+    }
+    fn set_step_hint(&mut self, h: f64) {
+        self.h_next = h;
+    }
+    fn advance<S: Switching>(
+        &mut self,
+        ode: &S,
+        (t0, t1): (f64, f64),
+        y: &mut [f64],
+        work: &mut Work,
+    ) -> Result<(), String> {
+        self.integrate_switched(ode, t0, t1, y, work)
     }
 }
 

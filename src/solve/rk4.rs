@@ -1,6 +1,8 @@
 //! Classical fourth-order Runge-Kutta with a fixed step: the plain explicit reference method of
 //! the error-against-run-time tables (and the same-integrator checks of scene T).
 
+use super::stepping::Stepping;
+use super::switching::Switching;
 use super::{Integrator, Ode, Work, MAX_DIM};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -70,6 +72,30 @@ impl Integrator for Rk4 {
                 "rk4: the state became non-finite by t = {t1}; the step {h:e} s is too long for this stiffness"
             ))
         }
+    }
+}
+
+/// A fixed step: no tolerance, nothing carried between calls, and the switching functions
+/// ignored (its steps are as long wherever the kinks lie).
+impl Stepping for Rk4 {
+    fn name(&self) -> &'static str {
+        "rk4"
+    }
+    fn tolerance(&self) -> Option<f64> {
+        None
+    }
+    fn step_hint(&self) -> f64 {
+        0.0
+    }
+    fn set_step_hint(&mut self, _h: f64) {}
+    fn advance<S: Switching>(
+        &mut self,
+        ode: &S,
+        (t0, t1): (f64, f64),
+        y: &mut [f64],
+        work: &mut Work,
+    ) -> Result<(), String> {
+        self.integrate(ode, t0, t1, y, work)
     }
 }
 

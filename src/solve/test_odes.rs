@@ -1,6 +1,6 @@
 //! Test problems the solvers' tests share, each with its solution in closed form.
 
-use super::dopri::{Switching, MAX_SWITCHES};
+use super::switching::{Switching, MAX_SWITCHES};
 use super::{Integrator, Ode, Work};
 
 /// A scalar equation y' = f(t, y).

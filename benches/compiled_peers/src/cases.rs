@@ -317,7 +317,7 @@ pub fn longitudinal() -> Case {
         panic!("prescribed velocity expected")
     };
     let f = sim.f;
-    // The simulation's absolute-tolerance scales (src/models/longitudinal/ode.rs): the deflection,
+    // The simulation's absolute-tolerance scales (src/models/longitudinal/solver.rs): the deflection,
     // FC/kt or the distance slid in a period if less, and the force integral over a period.
     let z_scale = (law.fc / law.kt).min((vc.abs() + va) / f);
     let spec = Rc::new(Spec {

@@ -9,7 +9,7 @@ use friction_fmu::models::transverse::{
     tolerance_scales, Params, Transverse, COUPLED, DIM, LAMBDA, Q, VX, VY, W, X, Y, ZX, ZY,
 };
 use friction_fmu::models::Simulation;
-use friction_fmu::solve::dopri::{Switching, MAX_SWITCHES};
+use friction_fmu::solve::switching::{Switching, MAX_SWITCHES};
 use friction_fmu::solve::Ode;
 use friction_fmu::variables::values::ValueSet;
 use std::f64::consts::PI;

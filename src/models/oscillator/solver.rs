@@ -4,18 +4,18 @@
 //! ([`super::linear_phase`]), dopri5 inside it.
 
 use super::Equations;
-use crate::friction::regularized::Regularized;
 use crate::models::switch::OscillatorSolver;
-use crate::solve::adaptive::Adaptive;
-use crate::solve::dopri::{Dopri5, Switching, MAX_SWITCHES};
+use crate::solve::dopri::Dopri5;
+use crate::solve::method::Method;
 use crate::solve::radau::{Radau5, StepPolynomial};
 use crate::solve::rk4::Rk4;
-use crate::solve::{Integrator, Work, MAX_DIM};
+use crate::solve::stepping::Stepping;
+use crate::solve::{Work, MAX_DIM};
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Solver {
-    Adaptive(Adaptive),
-    Rk4(Rk4),
+    /// A general solver on the whole motion.
+    General(Method),
     /// dopri5 inside the band, which the closed form outside it leaves to.
     Piecewise(Dopri5),
 }
@@ -33,50 +33,48 @@ impl Solver {
                 if name == OscillatorSolver::Piecewise {
                     Solver::Piecewise(dopri5)
                 } else {
-                    Solver::Adaptive(Adaptive::Dopri5(dopri5))
+                    Solver::General(Method::Dopri5(dopri5))
                 }
             }
-            OscillatorSolver::Rk4 => Solver::Rk4(Rk4 { h_max }),
+            OscillatorSolver::Rk4 => Solver::General(Method::Rk4(Rk4 { h_max })),
             OscillatorSolver::Radau5 => {
                 let mut radau = Radau5::new(rtol, atol, h_max);
                 radau.atol_scale[2] = f64::INFINITY;
-                Solver::Adaptive(Adaptive::Radau5(radau))
+                Solver::General(Method::Radau5(radau))
             }
         }
     }
 
     pub fn atol(&self) -> f64 {
         match self {
-            Solver::Adaptive(Adaptive::Radau5(r)) => r.atol,
-            Solver::Adaptive(Adaptive::Dopri5(d)) | Solver::Piecewise(d) => d.atol[0],
-            // The turning-point search stops at this resolution of u'.
-            Solver::Rk4(_) => 1e-12,
+            Solver::General(Method::Radau5(r)) => r.atol,
+            Solver::General(Method::Dopri5(d)) | Solver::Piecewise(d) => d.atol[0],
+            // The turning-point search stops at this resolution of u' (a fixed step has no
+            // tolerance).
+            Solver::General(_) => 1e-12,
         }
     }
 
     /// The step an adaptive solver would try next (part of a saved FMU state); 0 for rk4.
     pub fn step_hint(&self) -> f64 {
         match self {
-            Solver::Adaptive(a) => a.step_hint(),
+            Solver::General(m) => m.step_hint(),
             Solver::Piecewise(d) => d.h,
-            Solver::Rk4(_) => 0.0,
         }
     }
 
     pub fn set_step_hint(&mut self, h: f64) {
         match self {
-            Solver::Adaptive(a) => a.set_step_hint(h),
+            Solver::General(m) => m.set_step_hint(h),
             Solver::Piecewise(d) => d.h = h,
-            Solver::Rk4(_) => {}
         }
     }
 
     /// Where dopri5 found the problem stiff, once; radau5 and rk4 never say.
     pub fn stiff_since(&mut self) -> Option<f64> {
         match self {
-            Solver::Adaptive(a) => a.stiff_since(),
+            Solver::General(m) => m.stiff_since(),
             Solver::Piecewise(d) => d.stiff_since(),
-            Solver::Rk4(_) => None,
         }
     }
 
@@ -91,7 +89,7 @@ impl Solver {
         last: Option<&mut StepPolynomial>,
     ) -> Result<(), String> {
         match (self, last) {
-            (Solver::Adaptive(Adaptive::Radau5(r)), Some(last)) => {
+            (Solver::General(Method::Radau5(r)), Some(last)) => {
                 r.integrate_switched_keeping(equations, (t0, t1), y, work, last)
             }
             (solver, last) => {
@@ -99,45 +97,10 @@ impl Solver {
                     last.h = 0.0;
                 }
                 match solver {
-                    Solver::Adaptive(a) => a.integrate_switched(equations, t0, t1, y, work),
+                    Solver::General(m) => m.advance(equations, (t0, t1), y, work),
                     Solver::Piecewise(d) => d.integrate_switched(equations, t0, t1, y, work),
-                    Solver::Rk4(r) => r.integrate(equations, t0, t1, y, work),
                 }
             }
         }
-    }
-}
-
-impl Equations {
-    /// The outer edge of H's band and h: beyond the edge H is the constant h sgn(u').
-    pub fn band(&self) -> (f64, f64) {
-        match self.law {
-            Regularized::Linear { h, d } | Regularized::Trigonometric { h, d } => (d, h),
-            Regularized::LinearStiction { h, d, da }
-            | Regularized::TrigonometricStiction { h, d, da } => (d + 2.0 * da, h),
-        }
-    }
-}
-
-impl Switching for Equations {
-    /// H has kinks in u' at +-D (+-(D + Da), +-(D + 2 Da) with stiction).
-    fn switches(&self, _t: f64, y: &[f64], out: &mut [f64; MAX_SWITCHES]) -> usize {
-        let v = y[1];
-        let edges = match self.law {
-            Regularized::Linear { d, .. } | Regularized::Trigonometric { d, .. } => [d, d, d],
-            Regularized::LinearStiction { d, da, .. }
-            | Regularized::TrigonometricStiction { d, da, .. } => [d, d + da, d + 2.0 * da],
-        };
-        let count = if edges[0] == edges[2] { 1 } else { 3 };
-        for (i, e) in edges[..count].iter().enumerate() {
-            out[2 * i] = v - e;
-            out[2 * i + 1] = v + e;
-        }
-        2 * count
-    }
-
-    /// The trigonometric law's H is C1 at +-D: its slope falls to 0 there.
-    fn smooth_across(&self, _i: usize) -> bool {
-        matches!(self.law, Regularized::Trigonometric { .. })
     }
 }

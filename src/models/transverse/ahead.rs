@@ -9,11 +9,12 @@
 //! for them ([`Transverse::state`], [`Transverse::mean_now`]), and the mean takes the step's
 //! whole integral at its end.
 
-use super::{axial, band_points, Drive, Equations, Solver, Transverse, Q};
+use super::{axial, Drive, Equations, Solver, Transverse, Q};
 use crate::models::period_mean::PeriodMean;
 use crate::models::ramp::Ramp;
-use crate::solve::adaptive::Adaptive;
 use crate::solve::dopri::{Carry, StepAhead, CARRY_SAVED, STEP_AHEAD_SAVED};
+use crate::solve::method::Method;
+use crate::solve::stepping::CallEnd;
 use crate::solve::MAX_DIM;
 
 /// A dopri5 step taken past the communication point, with where the integration goes on from.
@@ -38,8 +39,8 @@ pub(super) const SAVED: usize = 2 + MAX_DIM + STEP_AHEAD_SAVED + CARRY_SAVED;
 
 impl Transverse {
     /// Whether calls may read steps taken ahead: dopri5, with the drive prescribed.
-    pub(super) fn looks_ahead(&self) -> bool {
-        matches!(self.solver, Solver::Adaptive(Adaptive::Dopri5(_)))
+    pub(super) fn takes_steps_ahead(&self) -> bool {
+        matches!(self.solver, Solver::General(Method::Dopri5(_)))
             && matches!(self.drive, Drive::Prescribed(_))
     }
 
@@ -73,12 +74,12 @@ impl Transverse {
     /// by moving the clock (true); at or past its end, by going on from there (true if `t_end`
     /// is its end, to round-off; false if the call must go on from `self.t`), the step then
     /// left in `behind` for the next to go on from.
-    pub(super) fn read_ahead(&mut self, t_end: f64, behind: &mut Option<Ahead>) -> bool {
+    pub(super) fn read_step_ahead(&mut self, t_end: f64, behind: &mut Option<Ahead>) -> bool {
         let Some(ahead) = &self.ahead else {
             return false;
         };
-        let slack = self.mean.slack(t_end);
-        if t_end < ahead.end - slack {
+        let call = CallEnd::of(t_end, ahead.end, self.mean.slack(t_end));
+        if call == CallEnd::Inside {
             self.t = t_end;
             return true;
         }
@@ -86,21 +87,24 @@ impl Transverse {
         if self.trim.mean {
             self.mean.add(ahead.y_end[Q], ahead.end);
         }
-        self.t = if t_end <= ahead.end + slack {
+        self.t = if call == CallEnd::AtEnd {
             t_end
         } else {
             ahead.end
         };
         *behind = self.ahead.take();
-        self.t == t_end
+        call == CallEnd::AtEnd
     }
 
     /// Answers a call of `h` that ends inside the step taken ahead, short of its end (true): it
-    /// moves the clock and cannot fail. False, with nothing changed, otherwise.
-    pub(super) fn read_inside_ahead(&mut self, h: f64) -> bool {
+    /// moves the clock and cannot fail. False, with nothing changed, otherwise
+    /// ([`crate::models::Simulation::read_inside`]).
+    pub(super) fn read_inside_step_ahead(&mut self, h: f64) -> bool {
         let t_end = self.t + h;
         match &self.ahead {
-            Some(a) if h > 0.0 && t_end < a.end - self.mean.slack(t_end) => {}
+            Some(a)
+                if h > 0.0
+                    && CallEnd::of(t_end, a.end, self.mean.slack(t_end)) == CallEnd::Inside => {}
             _ => return false,
         }
         // As do_step does: an input's derivative applies to one step, and vd is prescribed.
@@ -112,10 +116,10 @@ impl Transverse {
 
     /// Where steps may be taken ahead and dopri5's proposed step from `t` holds
     /// [`CALLS_AHEAD`] calls ending at `t_end`, takes that step (not past the period's
-    /// `boundary`, when the mean is read) and holds it for [`Transverse::read_ahead`] (true);
+    /// `boundary`, when the mean is read) and holds it for [`Transverse::read_step_ahead`] (true);
     /// it goes on from `behind`, the last step taken ahead, where that ended at `t`. False,
     /// with nothing changed, where it may not.
-    pub(super) fn look_ahead(
+    pub(super) fn take_step_ahead(
         &mut self,
         (t, t_end, boundary): (f64, f64, f64),
         behind: Option<Ahead>,
@@ -123,8 +127,8 @@ impl Transverse {
         let Drive::Prescribed(vd) = self.drive else {
             return Ok(false);
         };
-        let points = band_points(&self.solver);
-        let Solver::Adaptive(Adaptive::Dopri5(d)) = &mut self.solver else {
+        let points = self.band_points;
+        let Solver::General(Method::Dopri5(d)) = &mut self.solver else {
             return Ok(false);
         };
         let reach = (boundary - t).min(1.0 / self.p.f);
@@ -175,6 +179,15 @@ impl Transverse {
         Ok(true)
     }
 
+    /// Whether a saved state holds a step taken ahead (a flag, and the step if there is one):
+    /// with dopri5, and radau5 (always none), whose states were laid out so before dop853 came.
+    pub(super) fn saves_ahead(&self) -> bool {
+        matches!(
+            self.solver,
+            Solver::General(Method::Dopri5(_) | Method::Radau5(_))
+        )
+    }
+
     /// Appends the step taken ahead to a saved state: a flag, then [`SAVED`] numbers.
     pub(super) fn save_ahead(&self, out: &mut Vec<f64>) {
         match &self.ahead {
@@ -195,7 +208,7 @@ impl Transverse {
         self.ahead = match saved {
             [flag] if *flag == 0.0 => None,
             [flag, origin, end, rest @ ..]
-                if *flag == 1.0 && rest.len() == SAVED - 2 && self.looks_ahead() =>
+                if *flag == 1.0 && rest.len() == SAVED - 2 && self.takes_steps_ahead() =>
             {
                 let (y, rest) = rest.split_at(MAX_DIM);
                 let (step, carry) = rest.split_at(STEP_AHEAD_SAVED);

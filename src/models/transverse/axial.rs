@@ -13,8 +13,8 @@ use super::{
     band_coordinate, kink_switches, Params, Ramp, BAND, COUPLED_AXIAL, LAMBDA, Q, VX, VY, W, X, ZX,
     ZY,
 };
-use crate::solve::dopri::{Switching, MAX_SWITCHES};
 use crate::solve::narrow::Narrow;
+use crate::solve::switching::{Switching, MAX_SWITCHES};
 use crate::solve::Ode;
 
 pub struct Axial<'a> {

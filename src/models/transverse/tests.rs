@@ -1,6 +1,11 @@
 use super::*;
 use crate::friction::lugre::LuGre;
+use crate::models::transverse::solver::{BAND_POINTS_COARSE, BAND_POINTS_FINE};
 use crate::models::transverse::table::{BODY, INITIAL, SLIP_LAW, SOLVER, TABLE};
+use crate::solve::dopri::Dopri5;
+use crate::solve::method::Method;
+use crate::solve::narrow::Narrow;
+use crate::solve::switching::MAX_SWITCHES;
 
 fn values(solver: &str, slip: &str) -> ValueSet {
     let mut v = ValueSet::start(&TABLE);
@@ -466,13 +471,13 @@ fn the_total_laws_slip_rate_taken_at_the_steps_middle_gains_accuracy() {
         value: 5e-4,
         rate: 0.0,
     };
-    let Solver::Adaptive(Adaptive::Dopri5(tight)) = &sim.solver else {
+    let Solver::General(Method::Dopri5(tight)) = &sim.solver else {
         unreachable!()
     };
     // FFx's integral over the last of 150 periods, sub-steps ending on the periods as in the
     // model.
     let run = |rtol: f64, at_start: bool| {
-        let eq = Equations::new(&sim.p, vd, band_points(&sim.solver));
+        let eq = Equations::new(&sim.p, vd, sim.band_points);
         let mut d = Dopri5::new(rtol, tight.atol.map(|a| a / tight.rtol * rtol), tight.h_max);
         let mut y = sim.y;
         let mut work = Work::default();

@@ -1,68 +1,28 @@
 //! The solver menu of scene L. `exponential` is the simulation's own scheme (in the parent module),
 //! `closed_form` the exact bristle of Dahl at alpha = 1 ([`ClosedForm`]); the others integrate
-//! the bristle ODE `z' = rate(z, vr(t))` together with the force integral `q' = FT(z, vr(t))`
+//! the bristle ODE (`equations.rs`) together with the force integral `q' = FT(z, vr(t))`
 //! and the friction work `w' = FT vr` as quadrature states (same order as the solver), over
 //! sub-steps that never contain a sign change of vr.
 
 use super::closed_form::ClosedForm;
+use super::equations::{Bristle, LoadedLaw};
 use super::Law;
 use crate::models::longitudinal::table::vr;
 use crate::models::switch::{LongitudinalSolver, Switch};
-use crate::solve::adaptive::Adaptive;
 use crate::solve::dopri::Dopri5;
+use crate::solve::method::Method;
 use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
-use crate::solve::{Integrator, Ode, Work, MAX_DIM};
+use crate::solve::stepping::Stepping;
+use crate::solve::{Integrator, Work, MAX_DIM};
 use crate::variables::values::ValueSet;
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Solver {
     Exponential,
-    /// One RK4 step per sub-step of at most `h_max`.
-    Rk4 {
-        h_max: f64,
-    },
-    Adaptive(Adaptive),
+    /// A general solver on the bristle ODE (rk4's steps of at most 1/n period).
+    General(Method),
     ClosedForm(ClosedForm),
-}
-
-/// The law as a function of time, under a moving normal force.
-pub type LoadedLaw<'a> = &'a dyn Fn(f64) -> Law;
-
-/// `(z, q, w)` with the velocity (and the law, under a moving normal force) as a function of
-/// time; the first `dim` of them.
-struct Bristle<'a> {
-    law: &'a Law,
-    velocity: &'a dyn Fn(f64) -> f64,
-    loaded: Option<LoadedLaw<'a>>,
-    dim: usize,
-}
-
-impl Ode for Bristle<'_> {
-    fn dim(&self) -> usize {
-        self.dim
-    }
-    /// q and w are quadratures: the right-hand side reads z alone.
-    fn coupled(&self) -> usize {
-        self.dim.min(1)
-    }
-    fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
-        let v = (self.velocity)(t);
-        let law = self.loaded.map(|loaded| loaded(t));
-        let (rate, force) = match law.as_ref().unwrap_or(self.law) {
-            // Coulomb has no state; the simulation integrates its force in closed form instead.
-            Law::Coulomb => (0.0, 0.0),
-            Law::Dahl(d) => (d.rate(y[0], v), d.force(y[0])),
-            Law::LuGre(l) => (l.rate(y[0], v), l.force(y[0], v)),
-        };
-        dydt[0] = rate;
-        if self.dim > 1 {
-            dydt[1] = force;
-        }
-        if self.dim > 2 {
-            dydt[2] = force * v;
-        }
-    }
 }
 
 impl Solver {
@@ -85,9 +45,9 @@ impl Solver {
         match name {
             LongitudinalSolver::Exponential => return Ok(Solver::Exponential),
             LongitudinalSolver::Rk4 => {
-                return Ok(Solver::Rk4 {
+                return Ok(Solver::General(Method::Rk4(Rk4 {
                     h_max: 1.0 / (f * f64::from(steps_per_period)),
-                })
+                })))
             }
             // The adaptive solvers and closed_form (auto is resolved above).
             _ => {}
@@ -141,31 +101,37 @@ impl Solver {
         Ok(if name == LongitudinalSolver::Radau5 {
             let mut radau = Radau5::new(rtol, rtol * z_scale.min(q_scale), 1.0 / f);
             radau.atol_scale[2] = f64::INFINITY;
-            Solver::Adaptive(Adaptive::Radau5(radau))
+            Solver::General(Method::Radau5(radau))
         } else {
             let mut atol = [rtol * z_scale; MAX_DIM];
             atol[1] = rtol * q_scale;
             atol[2] = f64::INFINITY;
-            Solver::Adaptive(Adaptive::Dopri5(Dopri5::new(rtol, atol, 1.0 / f)))
+            Solver::General(Method::Dopri5(Dopri5::new(rtol, atol, 1.0 / f)))
         })
     }
 
     /// Sub-steps on a grid of 1/n period (the adaptive solvers choose their own steps).
     pub fn fixed_step(&self) -> bool {
-        matches!(self, Solver::Exponential | Solver::Rk4 { .. })
+        match self {
+            Solver::Exponential => true,
+            Solver::General(m) => m.tolerance().is_none(),
+            Solver::ClosedForm(_) => false,
+        }
     }
 
-    /// The adaptive solver, if it is one.
-    pub fn adaptive(&self) -> Option<&Adaptive> {
+    /// The tolerance of a general solver on the bristle ODE (None for rk4 and the scene's own
+    /// schemes).
+    pub fn ode_tolerance(&self) -> Option<f64> {
         match self {
-            Solver::Adaptive(a) => Some(a),
+            Solver::General(m) => m.tolerance(),
             _ => None,
         }
     }
 
-    pub fn adaptive_mut(&mut self) -> Option<&mut Adaptive> {
+    /// The general solver, if it is one.
+    pub fn general_mut(&mut self) -> Option<&mut Method> {
         match self {
-            Solver::Adaptive(a) => Some(a),
+            Solver::General(m) => Some(m),
             _ => None,
         }
     }
@@ -173,26 +139,26 @@ impl Solver {
     /// The tolerance a solver integrates to (None for the fixed-step ones).
     pub fn tolerance(&self) -> Option<f64> {
         match self {
-            Solver::Adaptive(a) => Some(a.rtol()),
+            Solver::General(m) => m.tolerance(),
             Solver::ClosedForm(c) => Some(c.rtol),
-            Solver::Exponential | Solver::Rk4 { .. } => None,
+            Solver::Exponential => None,
         }
     }
 
     /// The step (or quadrature panel) to try next, part of a saved FMU state.
     pub fn step_hint(&self) -> f64 {
         match self {
-            Solver::Adaptive(a) => a.step_hint(),
+            Solver::General(m) => m.step_hint(),
             Solver::ClosedForm(c) => c.quadrature.h_next,
-            Solver::Exponential | Solver::Rk4 { .. } => 0.0,
+            Solver::Exponential => 0.0,
         }
     }
 
     pub fn set_step_hint(&mut self, h: f64) {
         match self {
-            Solver::Adaptive(a) => a.set_step_hint(h),
+            Solver::General(m) => m.set_step_hint(h),
             Solver::ClosedForm(c) => c.quadrature.h_next = h,
-            Solver::Exponential | Solver::Rk4 { .. } => {}
+            Solver::Exponential => {}
         }
     }
 
@@ -218,8 +184,7 @@ impl Solver {
             Solver::Exponential | Solver::ClosedForm(_) => {
                 return Err("exponential and closed_form are not ODE solvers".into())
             }
-            Solver::Rk4 { h_max } => Rk4 { h_max: *h_max }.integrate(&ode, t0, t1, &mut y, work)?,
-            Solver::Adaptive(a) => a.integrate(&ode, t0, t1, &mut y, work)?,
+            Solver::General(m) => m.integrate(&ode, t0, t1, &mut y, work)?,
         }
         *z = y[0];
         Ok((y[1], y[2]))

@@ -1,0 +1,77 @@
+//! The general solvers a model picks from, as one value behind the stepping interface
+//! ([`Stepping`]): dopri5, radau5, dop853 and rk4. A model builds the one its `solver` switch
+//! names, with its own tolerances, and from then on asks only the interface. A new general
+//! solver is a module of `solve/` that implements [`Stepping`], and a variant here.
+
+use super::dop853::Dop853;
+use super::dopri::Dopri5;
+use super::radau::Radau5;
+use super::rk4::Rk4;
+use super::stepping::Stepping;
+use super::switching::Switching;
+use super::{Integrator, Ode, Work};
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Method {
+    Dopri5(Dopri5),
+    Radau5(Radau5),
+    Dop853(Dop853),
+    Rk4(Rk4),
+}
+
+/// `$body` with `$s` bound to the solver inside `$method`, whichever it is.
+macro_rules! each {
+    ($method:expr, $s:ident => $body:expr) => {
+        match $method {
+            Method::Dopri5($s) => $body,
+            Method::Radau5($s) => $body,
+            Method::Dop853($s) => $body,
+            Method::Rk4($s) => $body,
+        }
+    };
+}
+
+impl Stepping for Method {
+    fn name(&self) -> &'static str {
+        each!(self, s => s.name())
+    }
+
+    fn tolerance(&self) -> Option<f64> {
+        each!(self, s => s.tolerance())
+    }
+
+    fn step_hint(&self) -> f64 {
+        each!(self, s => s.step_hint())
+    }
+
+    fn set_step_hint(&mut self, h: f64) {
+        each!(self, s => s.set_step_hint(h))
+    }
+
+    fn stiff_since(&mut self) -> Option<f64> {
+        each!(self, s => s.stiff_since())
+    }
+
+    fn advance<S: Switching>(
+        &mut self,
+        ode: &S,
+        span: (f64, f64),
+        y: &mut [f64],
+        work: &mut Work,
+    ) -> Result<(), String> {
+        each!(self, s => s.advance(ode, span, y, work))
+    }
+}
+
+impl Integrator for Method {
+    fn integrate(
+        &mut self,
+        ode: &dyn Ode,
+        t0: f64,
+        t1: f64,
+        y: &mut [f64],
+        work: &mut Work,
+    ) -> Result<(), String> {
+        each!(self, s => s.integrate(ode, t0, t1, y, work))
+    }
+}

@@ -1,0 +1,82 @@
+//! The one stepping interface every general solver implements, so that a model picks a solver
+//! and never needs to know which: it hands over its equations (an ODE with its switching
+//! functions, [`Switching`]), and the solver advances them, ending its steps on the switching
+//! functions' sign changes, answers what the model reads of it (its tolerance, a stiffness
+//! found), and saves and restores what it carries from one call to the next.
+//!
+//! A step taken ahead is a solver's step taken whole past the communication point, its
+//! interpolant read by the calls that end inside it ([`CallEnd`]): the models that take them
+//! say so with one vocabulary (`takes_steps_ahead`, `take_step_ahead`, `read_step_ahead`), and
+//! the FMI layer asks one question of any model, `Simulation::read_inside`.
+
+use super::switching::Switching;
+use super::Work;
+
+/// How many numbers [`Stepping::save_into`] writes.
+pub const SAVED: usize = 1;
+
+/// A solver behind the stepping interface.
+pub trait Stepping {
+    /// The solver's name, as the models' `solver` switches spell it (for the messages).
+    fn name(&self) -> &'static str;
+
+    /// The relative tolerance the solver integrates to; None for a fixed step, whose error is
+    /// set by its step alone.
+    fn tolerance(&self) -> Option<f64>;
+
+    /// The step the solver would try next (0 for a fixed step): all it carries from one call
+    /// to the next, so part of a saved state.
+    fn step_hint(&self) -> f64;
+
+    fn set_step_hint(&mut self, h: f64);
+
+    /// Where the solver found the problem stiff ([`crate::solve::stiffness`]), the first time
+    /// it is asked after that was found; None otherwise (always, for a solver that cannot
+    /// tell).
+    fn stiff_since(&mut self) -> Option<f64> {
+        None
+    }
+
+    /// Advances `y` over `span`, from its start to its end, ending steps on the sign changes of `ode`'s switching
+    /// functions; an error says why the interval could not be completed.
+    fn advance<S: Switching>(
+        &mut self,
+        ode: &S,
+        span: (f64, f64),
+        y: &mut [f64],
+        work: &mut Work,
+    ) -> Result<(), String>;
+
+    /// Appends what the solver carries between calls to a saved state: [`SAVED`] numbers.
+    fn save_into(&self, out: &mut Vec<f64>) {
+        out.push(self.step_hint());
+    }
+
+    /// Restores what [`Stepping::save_into`] wrote (`saved` holds [`SAVED`] numbers).
+    fn restore(&mut self, saved: &[f64]) {
+        self.set_step_hint(saved[0]);
+    }
+}
+
+/// Where a call that ends at `t_end` ends against a step taken ahead to `end`, past the
+/// communication point: `slack` is the clock's round-off, within which a call ends on the step's
+/// end. A call inside the step is read from its interpolant; one at its end takes its end
+/// state; one past it goes on from there.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CallEnd {
+    Inside,
+    AtEnd,
+    Past,
+}
+
+impl CallEnd {
+    pub fn of(t_end: f64, end: f64, slack: f64) -> CallEnd {
+        if t_end < end - slack {
+            CallEnd::Inside
+        } else if t_end <= end + slack {
+            CallEnd::AtEnd
+        } else {
+            CallEnd::Past
+        }
+    }
+}
