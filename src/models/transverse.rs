@@ -624,6 +624,13 @@ impl Simulation for Transverse {
         ))
     }
 
+    fn next_internal_step(&self) -> Option<f64> {
+        match &self.solver {
+            Solver::General(m) => Some(m.step_hint()).filter(|&h| h > 0.0),
+            Solver::TwoPhase(_) | Solver::Exponential(_) => None,
+        }
+    }
+
     fn save_into(&self, out: &mut Vec<f64>) {
         // vd_in's past values and pending rate are state too (FMI 2.0, 2.1.8): see DriveTrain's.
         out.clear();
