@@ -348,6 +348,54 @@ fn build(toolchain: &Toolchain, root: &Path) -> Result<PathBuf, String> {
 mod tests {
     use super::Missing;
 
+    /// The library targets of binary/Cargo.toml follow the model list: one `<Model>` target a
+    /// model, one `<Model>_variant` a model a variant can trim, and no other; each target's
+    /// source exports its kind. Adding a model to src/models/list.rs without its targets fails
+    /// here, naming what to add.
+    #[test]
+    fn the_library_targets_follow_the_model_list() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let manifest =
+            std::fs::read_to_string(root.join("binary/Cargo.toml")).expect("binary/Cargo.toml");
+        let parsed: toml::Table = manifest.parse().expect("binary/Cargo.toml is TOML");
+        let targets: Vec<(String, String)> = parsed["example"]
+            .as_array()
+            .expect("[[example]] targets")
+            .iter()
+            .map(|t| {
+                (
+                    t["name"].as_str().unwrap().to_string(),
+                    t["path"].as_str().unwrap().to_string(),
+                )
+            })
+            .collect();
+        let mut expected = Vec::new();
+        for model in crate::models::MODELS {
+            let id = model.table.model_identifier;
+            expected.push((id.to_string(), "full"));
+            if crate::variant::trimmable(id) {
+                expected.push((format!("{id}_variant"), "variant"));
+            }
+        }
+        let names: Vec<&str> = targets.iter().map(|(name, _)| name.as_str()).collect();
+        for (name, kind) in &expected {
+            let Some((_, path)) = targets.iter().find(|(n, _)| n == name) else {
+                panic!("binary/Cargo.toml has no [[example]] {name:?} (crate-type cdylib, exporting the {kind} library): it has {names:?}");
+            };
+            let source = std::fs::read_to_string(root.join("binary").join(path))
+                .expect("the target's source");
+            assert!(
+                source.contains("export_fmu_library!(") && source.contains(&format!(", {kind});")),
+                "binary/{path} does not export the {kind} library of {name}"
+            );
+        }
+        assert_eq!(
+            names.len(),
+            expected.len(),
+            "binary/Cargo.toml has targets no model needs: {names:?}"
+        );
+    }
+
     /// Oracle: the commands docs/platforms.md gives for each platform, joined into one line.
     #[test]
     fn the_missing_platforms_name_one_command() {
