@@ -11,8 +11,8 @@ use super::ffi::*;
 use super::logger::Logger;
 use super::updates;
 use crate::boundary::args::{slice, slice_mut, text};
-use crate::boundary::states;
 use crate::boundary::values::{self, access, is_integer_or_switch, is_none, is_real, Access};
+use crate::boundary::{logging, states};
 use crate::instance::calls::{Call, ValueType};
 use crate::instance::library::Binary;
 use crate::instance::log::{LogSink, CATEGORY_ERROR};
@@ -51,19 +51,13 @@ pub unsafe extern "C" fn fmi3SetDebugLogging(
     n_categories: usize,
     categories: *const FmiString,
 ) -> Status {
-    with_instance(c, |instance| {
-        let Some(categories) = slice(categories, n_categories) else {
-            return instance.null_argument(Call::SetDebugLogging, "categories");
-        };
-        let mut names = Vec::with_capacity(categories.len());
-        for &category in categories {
-            match text(category) {
-                Some(name) => names.push(name.to_string()),
-                None => return instance.null_argument(Call::SetDebugLogging, "a category name"),
-            }
-        }
-        instance.set_debug_logging(logging_on != FALSE, &names)
-    })
+    logging::set_debug_logging(
+        c as usize,
+        &FMI3,
+        logging_on != FALSE,
+        n_categories,
+        categories,
+    )
 }
 
 /// fmi3InstantiateCoSimulation of a library that carries what `binary` says. Event mode is
