@@ -10,6 +10,11 @@
 #[path = "src/variables/mod.rs"]
 mod variables;
 
+// What the variables' checks return.
+#[allow(dead_code)]
+#[path = "src/error.rs"]
+mod error;
+
 // Each model's variable table, as src/models/list.rs lists the models.
 macro_rules! models {
     ($($module:ident => $constant:ident),* $(,)?) => {

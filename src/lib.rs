@@ -12,6 +12,7 @@ pub mod boundary;
 #[cfg(feature = "tools")]
 #[allow(unsafe_code)]
 pub mod cpu_clock;
+pub mod error;
 pub mod fmi2;
 pub mod fmi3;
 pub mod friction;

@@ -9,6 +9,7 @@
 use super::calls::Call;
 use super::phase::Phase;
 use super::Instance;
+use crate::error::Error;
 use crate::models::Simulation;
 use crate::variables::values::check_value;
 use crate::variables::variable::{Causality, Kind};
@@ -57,18 +58,17 @@ impl Snapshot {
     }
 
     /// Puts the instance back to this state; the error says why it cannot.
-    pub fn restore(&self, instance: &mut Instance) -> Result<(), String> {
+    pub fn restore(&self, instance: &mut Instance) -> Result<(), Error> {
         if self.owner != instance.id {
-            return Err(
-                "the FMU state was taken from another instance: expected a state of this instance"
-                    .into(),
-            );
+            return Err(Error::state(
+                "the FMU state was taken from another instance",
+                "a state of this instance",
+            ));
         }
         if self.values.len() != instance.values.as_slice().len() {
-            return Err(format!(
-                "the FMU state holds {} values; expected {}",
-                self.values.len(),
-                instance.values.as_slice().len()
+            return Err(Error::state(
+                format!("the FMU state holds {} values", self.values.len()),
+                format!("{}", instance.values.as_slice().len()),
             ));
         }
         // Only values the setters would accept (outputs are recomputed from the simulation). An
@@ -86,13 +86,14 @@ impl Snapshot {
         for (var, &value) in given() {
             let whole = matches!(var.kind, Kind::Real { .. }) || value.fract() == 0.0;
             if !whole {
-                return Err(format!(
-                    "the FMU state holds {} = {value}: expected a whole number",
-                    var.name
+                return Err(Error::state(
+                    format!("the FMU state holds {} = {value}", var.name),
+                    "a whole number",
                 ));
             }
-            check_value(table, var, value)
-                .map_err(|message| format!("the FMU state holds {message}"))?;
+            check_value(table, var, value).map_err(|e| {
+                Error::state(format!("the FMU state holds {}", e.found), e.expected)
+            })?;
         }
         // The simulation the instance has can take the state as it is when it was built from
         // the same values and start time: no build, and no periodic start computed again.
@@ -108,18 +109,20 @@ impl Snapshot {
         let needs_simulation =
             !matches!(self.phase, Phase::Instantiated | Phase::InitializationMode);
         if needs_simulation != self.sim.is_some() {
-            return Err(format!(
-                "the FMU state is in phase {} {} a model state: expected one {}",
-                instance.phase_name(self.phase),
-                if needs_simulation { "without" } else { "with" },
+            return Err(Error::state(
+                format!(
+                    "the FMU state is in phase {} {} a model state",
+                    instance.phase_name(self.phase),
+                    if needs_simulation { "without" } else { "with" },
+                ),
                 if needs_simulation {
                     format!(
-                        "with it after {}",
+                        "one with it after {}",
                         instance.function(Call::ExitInitializationMode)
                     )
                 } else {
-                    "without it before".to_string()
-                }
+                    "one without it before".to_string()
+                },
             ));
         }
         // A simulation whose clock is not the instance's would step from another time (a forged
@@ -129,10 +132,13 @@ impl Snapshot {
             if sim.time() == self.time {
                 Ok(())
             } else {
-                Err(format!(
-                    "the FMU state's model is at t = {} but the state says t = {}: expected the same time",
-                    sim.time(),
-                    self.time
+                Err(Error::state(
+                    format!(
+                        "the FMU state's model is at t = {} but the state says t = {}",
+                        sim.time(),
+                        self.time
+                    ),
+                    "the same time",
                 ))
             }
         };
@@ -209,8 +215,13 @@ impl Snapshot {
         guid: &str,
         owner: u64,
         sizes: &str,
-    ) -> Result<Snapshot, String> {
-        let corrupt = |what: &str| format!("the serialized FMU state is not valid: {what}");
+    ) -> Result<Snapshot, Error> {
+        let corrupt = |what: &str| {
+            Error::state(
+                format!("the serialized FMU state is not valid: {what}"),
+                "the bytes this FMU serialized, whole",
+            )
+        };
         let Some(length) = declared_length(bytes) else {
             return Err(corrupt(
                 "it does not start with this FMU's header (truncated or foreign data)",

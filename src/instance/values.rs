@@ -3,7 +3,7 @@
 use super::calls::Call;
 use super::phase::Phase::*;
 use super::{Instance, Status, NO_VARIABLE};
-use crate::models::HELD_INPUTS;
+use crate::models::held_inputs;
 use crate::variables::values::check_value;
 use crate::variables::variable::{Causality, Kind, Variability, Variable};
 
@@ -262,7 +262,7 @@ impl Instance {
         }
         let function = self.function(Call::SetRealInputDerivatives);
         if !self.model.table.interpolates_inputs {
-            return self.error(&format!("{function}: {HELD_INPUTS}"));
+            return self.error(&format!("{function}: {}", held_inputs()));
         }
         for ((&vr, &order), &derivative) in value_references.iter().zip(orders).zip(derivatives) {
             let var = match self.derivative_variable(function, vr, order, Causality::Input) {

@@ -22,6 +22,7 @@ use super::input_scheme::{self, Extrapolator};
 use super::ramp::Ramp;
 use super::switch::{DriveSolver, InputScheme, Switch, VoltageSource};
 use super::{require_finite_start, require_non_negative, require_positive, Simulation};
+use crate::error::{Error, Failure};
 use crate::models::drive::table::{vr, TABLE};
 use crate::solve::expm::{expm, mul_vec, Matrix, Propagators};
 use crate::variables::values::ValueSet;
@@ -45,7 +46,7 @@ pub fn build(
     values: &ValueSet,
     start_time: f64,
     scope: &super::Scope,
-) -> Result<Box<dyn Simulation>, String> {
+) -> Result<Box<dyn Simulation>, Error> {
     Ok(Box::new(Drive::with_scope(values, start_time, scope)?))
 }
 
@@ -55,11 +56,11 @@ impl Drive {
         values: &ValueSet,
         start_time: f64,
         _scope: &super::Scope,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, Error> {
         Drive::new(values, start_time)
     }
 
-    pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, String> {
+    pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, Error> {
         require_finite_start(start_time)?;
         let resistance = require_positive(values, vr::R)?;
         let inductance = require_positive(values, vr::L)?;
@@ -70,8 +71,10 @@ impl Drive {
         let n = require_positive(values, vr::N)?;
         let efficiency = require_positive(values, vr::EFFICIENCY)?;
         if efficiency > 1.0 {
-            return Err(format!(
-                "efficiency = {efficiency} is out of range: expected 0 < efficiency <= 1"
+            return Err(Error::value(
+                "efficiency",
+                efficiency,
+                "0 < efficiency <= 1",
             ));
         }
         let lead = require_positive(values, vr::LEAD)?;
@@ -95,9 +98,12 @@ impl Drive {
             voltage,
         };
         if !p.r.is_finite() || !p.j_eff.is_finite() {
-            return Err(format!(
-                "lead / (2 pi n) = {} and J + m_nut r^2 / efficiency = {}: expected finite numbers",
-                p.r, p.j_eff
+            return Err(Error::combination(
+                format!(
+                    "lead / (2 pi n) = {} and J + m_nut r^2 / efficiency = {}",
+                    p.r, p.j_eff
+                ),
+                "finite numbers",
             ));
         }
         Ok(Drive {
@@ -111,18 +117,25 @@ impl Drive {
     }
 
     /// The armature voltage and the load now, from the inputs (or the voltage parameter).
-    fn inputs(&self, values: &ValueSet) -> Result<(f64, f64), String> {
+    fn inputs(&self, values: &ValueSet) -> Result<(f64, f64), Error> {
         let voltage = self.p.voltage.unwrap_or_else(|| values.real(vr::V_IN));
         let force = values.real(vr::F_LOAD);
         if !voltage.is_finite() || !force.is_finite() {
-            return Err(format!(
-                "V_in = {voltage} and F_load = {force}: expected finite numbers"
+            let name = if voltage.is_finite() {
+                "F_load"
+            } else {
+                "V_in"
+            };
+            return Err(Error::value_found(
+                name,
+                format!("V_in = {voltage} and F_load = {force}"),
+                "finite numbers",
             ));
         }
         Ok((voltage, force))
     }
 
-    fn propagator(&mut self, h: f64) -> Result<Matrix<DIM>, String> {
+    fn propagator(&mut self, h: f64) -> Result<Matrix<DIM>, Error> {
         let p = &self.p;
         let phi = self.propagators.get(h, |h| {
             let mut a = p.system();
@@ -131,8 +144,12 @@ impl Drive {
                     *x *= h;
                 }
             }
-            expm(&a).map_err(|e| {
-                format!("{e}: the parameters put a coefficient of the drive's equations beyond f64")
+            expm(&a).map_err(|e| Error {
+                expected: format!(
+                    "{}: parameters that keep every coefficient of the drive's equations within f64",
+                    e.expected
+                ),
+                ..e
             })
         })?;
         Ok(*phi)
@@ -140,10 +157,8 @@ impl Drive {
 }
 
 impl Simulation for Drive {
-    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String> {
-        if !(h > 0.0 && h.is_finite()) {
-            return Err(format!("communication step {h} s: expected a step > 0"));
-        }
+    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), Error> {
+        super::require_step(h)?;
         let (voltage, force) = self.inputs(values)?;
         let phi = self.propagator(h)?;
         // The master's derivatives apply to this step only (fmi2DoStep restores them with the
@@ -170,9 +185,11 @@ impl Simulation for Drive {
         ];
         let z = mul_vec(&phi, &z);
         if !z[..3].iter().all(|v| v.is_finite()) {
-            return Err(format!(
-                "the state became non-finite at t = {}: the inputs or their derivatives are too large, or R, L, kt_m, ke and J make the motor too fast to resolve in f64 over a step of {h} s",
-                self.t + h
+            return Err(Error::step(
+                "exponential",
+                Failure::NotFinite,
+                format!("the state became non-finite at t = {}", self.t + h),
+                format!("smaller inputs or derivatives, or R, L, kt_m, ke and J that keep the motor resolvable in f64 over a step of {h} s"),
             ));
         }
         self.y.copy_from_slice(&z[..3]);
@@ -202,7 +219,7 @@ impl Simulation for Drive {
         }
     }
 
-    fn restore(&mut self, state: &[f64]) -> Result<(), String> {
+    fn restore(&mut self, state: &[f64]) -> Result<(), Error> {
         super::check_saved(TABLE.model_identifier, state, 4 + 2 * input_scheme::SAVED)?;
         let mut inputs = self.inputs;
         for (input, saved) in inputs
@@ -217,15 +234,11 @@ impl Simulation for Drive {
         Ok(())
     }
 
-    fn set_input_derivative(
-        &mut self,
-        value_reference: u32,
-        derivative: f64,
-    ) -> Result<(), String> {
+    fn set_input_derivative(&mut self, value_reference: u32, derivative: f64) -> Result<(), Error> {
         match value_reference {
             vr::V_IN => self.inputs[0].set_derivative(derivative),
             vr::F_LOAD => self.inputs[1].set_derivative(derivative),
-            _ => return Err(format!("value reference {value_reference} is not an input")),
+            _ => return Err(super::not_an_input(value_reference)),
         }
         Ok(())
     }
@@ -244,7 +257,7 @@ impl Simulation for Drive {
         }
     }
 
-    fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {
+    fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, Error> {
         let (voltage, force) = self.inputs(values)?;
         let (di, domega) = self.p.rates(self.y[I], self.y[OMEGA], voltage, force);
         match value_reference {
@@ -252,9 +265,7 @@ impl Simulation for Drive {
             vr::X_NUT => Ok(self.p.r * self.y[OMEGA]),
             vr::CURRENT => Ok(di),
             vr::OMEGA => Ok(domega),
-            _ => Err(format!(
-                "value reference {value_reference} has no derivative here: expected an output"
-            )),
+            _ => Err(super::no_output_derivative(value_reference)),
         }
     }
 }

@@ -27,6 +27,7 @@
 
 use super::ramp::Ramp;
 use super::switch::{InputScheme, Switch};
+use crate::error::Error;
 
 /// The numbers [`Extrapolator::save`] writes.
 pub const SAVED: usize = 12 + Watch::SAVED;
@@ -183,11 +184,12 @@ impl Extrapolator {
     }
 
     /// Takes back what [`Extrapolator::save`] wrote (`saved` holds exactly [`SAVED`] numbers).
-    pub fn restore(&mut self, saved: &[f64]) -> Result<(), String> {
+    pub fn restore(&mut self, saved: &[f64]) -> Result<(), Error> {
         let count = saved[6];
         if !matches!(count, 0.0..=3.0) || count.fract() != 0.0 {
-            return Err(format!(
-                "a saved input history holds {count} values: expected 0, 1, 2 or 3"
+            return Err(Error::state(
+                format!("a saved input history of {count} values"),
+                "0, 1, 2 or 3",
             ));
         }
         for (k, sample) in self.samples.iter_mut().enumerate() {
@@ -201,8 +203,9 @@ impl Extrapolator {
             0.0 => None,
             1.0 => Some(saved[10]),
             flag => {
-                return Err(format!(
-                    "a saved input's derivative flag is {flag}: expected 0 or 1"
+                return Err(Error::state(
+                    format!("a saved input's derivative flag of {flag}"),
+                    "0 or 1",
                 ))
             }
         };
@@ -288,19 +291,20 @@ impl Watch {
         ]);
     }
 
-    fn restore(saved: &[f64]) -> Result<Self, String> {
+    fn restore(saved: &[f64]) -> Result<Self, Error> {
         let flag = |x: f64| match x {
             0.0 => Ok(false),
             1.0 => Ok(true),
-            _ => Err(format!(
-                "a saved input's stability watch holds the flag {x}: expected 0 or 1"
+            _ => Err(Error::state(
+                format!("a saved input's stability watch with the flag {x}"),
+                "0 or 1",
             )),
         };
         let count = saved[6];
         if !(0.0..=f64::from(Self::BLOCK)).contains(&count) || count.fract() != 0.0 {
-            return Err(format!(
-                "a saved input's stability watch counts {count} changes: expected 0 to {}",
-                Self::BLOCK
+            return Err(Error::state(
+                format!("a saved input's stability watch counting {count} changes"),
+                format!("0 to {}", Self::BLOCK),
             ));
         }
         Ok(Watch {

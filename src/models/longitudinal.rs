@@ -31,13 +31,14 @@ use super::switch::{
     InputScheme, LongitudinalInitialState, LongitudinalLaw, NormalForceSource, Switch,
     VelocitySource,
 };
-use super::{require_passive, require_positive, resolved_energy, Scope, Simulation};
+use super::{require_passive, require_positive, require_steps, resolved_energy, Scope, Simulation};
+use crate::error::{Error, Failure};
 use crate::friction::{coulomb, dahl::Dahl, lugre::LuGre, sgn};
 use crate::models::longitudinal::table::vr;
 use crate::solve::method::Method;
 use crate::solve::phase::{cos_turns, turns};
 use crate::solve::rk4::Rk4;
-use crate::solve::shooting;
+use crate::solve::shooting::{self, NoOrbit};
 use crate::solve::stepping::Stepping;
 use crate::solve::{within_step_budget, Work};
 use crate::variables::values::ValueSet;
@@ -199,7 +200,7 @@ pub fn build(
     values: &ValueSet,
     start_time: f64,
     scope: &Scope,
-) -> Result<Box<dyn Simulation>, String> {
+) -> Result<Box<dyn Simulation>, Error> {
     Ok(Box::new(Longitudinal::with_scope(
         values, start_time, scope,
     )?))
@@ -207,26 +208,27 @@ pub fn build(
 
 impl Longitudinal {
     /// The full model.
-    pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, String> {
+    pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, Error> {
         Longitudinal::with_scope(values, start_time, &Scope::full())
     }
 
     /// The simulation for an interface that hides what `scope` lists. (Coulomb has no bristle state
     /// in the full model already: z stays 0 and the force is integrated in closed form.)
-    pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
+    pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, Error> {
         let mut sim = Longitudinal::starting_from(values, start_time, scope)?;
         let initial = LongitudinalInitialState::read(values, vr::INITIAL)?;
         if initial == LongitudinalInitialState::Periodic {
             if sim.velocity == Velocity::Input || sim.load.is_some() {
-                return Err(
-                    "initial = periodic needs the velocity prescribed and the weight as the normal force (velocity_source = prescribed, normal_force_source = weight): with an input the motion has no period known at initialization"
-                        .into(),
-                );
+                return Err(Error::combination(
+                    "initial = periodic with an input (velocity or normal force): the motion has no period known at initialization",
+                    "the velocity prescribed and the weight as the normal force (velocity_source = prescribed, normal_force_source = weight)",
+                ));
             }
             if sim.law != Law::Coulomb {
-                if let Err(why) = sim.settle_on_orbit(values, scope) {
+                if let Err(no_orbit) = sim.settle_on_orbit(values, scope) {
                     sim.notice = Some(format!(
-                        "initial = periodic: {why}; the run starts from rest instead and goes through the transient"
+                        "initial = periodic: {}; the run starts from rest instead and goes through the transient",
+                        no_orbit.why
                     ));
                 } else if let (Law::LuGre(law), true) = (sim.law, sim.solver.fixed_step()) {
                     sim.notice = first_period_damping(&law, sim.f);
@@ -240,7 +242,7 @@ impl Longitudinal {
     /// found by shooting on the one-period map ([`crate::solve::shooting`]) with this simulation's
     /// solver, from a period after rest. (Coulomb has no state: its first period is steady.)
     /// The periods it integrates count in [`Longitudinal::work`].
-    fn settle_on_orbit(&mut self, values: &ValueSet, scope: &Scope) -> Result<(), String> {
+    fn settle_on_orbit(&mut self, values: &ValueSet, scope: &Scope) -> Result<(), NoOrbit> {
         let period = 1.0 / self.f;
         let start_time = self.t;
         let rtol = values.real(vr::TOLERANCE);
@@ -270,9 +272,8 @@ impl Longitudinal {
         let scale = (self.fc / self.stiffness())
             .min(self.slip_per_period())
             .min(damping);
-        let orbit = map(&[0.0], 1e-6).and_then(|guess| {
+        let orbit = map(&[0.0], 1e-6).map_err(NoOrbit::from).and_then(|guess| {
             shooting::periodic_orbit(&guess, (&[scale], &[false]), rtol, &mut map)
-                .map_err(String::from)
         });
         self.work = self.work.plus(&work);
         self.z = orbit?.state[0];
@@ -291,15 +292,16 @@ impl Longitudinal {
     }
 
     /// The simulation at `start_time` with the bristle undeflected.
-    fn starting_from(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
+    fn starting_from(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, Error> {
         let m = require_positive(values, vr::M)?;
         let mu = require_positive(values, vr::MU)?;
         let g = require_positive(values, vr::G)?;
         let f = require_positive(values, vr::F)?;
         let fc = mu * m * g;
         if !(fc.is_normal() && fc > 0.0) {
-            return Err(format!(
-                "the Coulomb force FC = mu m g = {fc} N: expected a finite FC of at least 2.2e-308 N, the least normal number (check m, mu, g)"
+            return Err(Error::combination(
+                format!("the Coulomb force FC = mu m g = {fc} N"),
+                "a finite FC of at least 2.2e-308 N, the least normal number (check m, mu, g)",
             ));
         }
         let kt = require_positive(values, vr::KT)?;
@@ -330,13 +332,7 @@ impl Longitudinal {
             NormalForceSource::Input => Some(Ramp::default()),
             NormalForceSource::Weight => None,
         };
-        let steps_per_period = values.integer(vr::STEPS_PER_PERIOD);
-        if steps_per_period < 1 {
-            return Err(format!(
-                "steps_per_period = {steps_per_period} is out of range: expected steps_per_period >= 1"
-            ));
-        }
-        let steps_per_period = steps_per_period as u32;
+        let steps_per_period = require_steps(values, vr::STEPS_PER_PERIOD)?;
         // The farthest the contact can slide in a period, which bounds its deflection.
         let slip_per_period = match velocity {
             Velocity::Prescribed { vc, va } => (vc.abs() + va) / f,
@@ -356,16 +352,20 @@ impl Longitudinal {
                 // Saturated under a constant FC the bristle holds, in closed form; under a moving
                 // one it follows FC where the rate's slope is unbounded, which an adaptive solver
                 // cannot step across.
-                return Err(format!(
-                    "law dahl with alpha = {} and the normal force an input: expected alpha >= 1, or solver exponential or rk4",
-                    d.alpha
+                return Err(Error::combination(
+                    format!(
+                        "law dahl with alpha = {} and the normal force an input",
+                        d.alpha
+                    ),
+                    "alpha >= 1, or solver exponential or rk4",
                 ));
             }
         }
         if let (Solver::ClosedForm(_), Some(_), false) = (&solver, load, law == Law::Coulomb) {
-            return Err(
-                "solver closed_form with the normal force an input: expected normal_force_source = weight (under a moving normal force the bristle has no closed form), or solver dopri5 or radau5".into(),
-            );
+            return Err(Error::combination(
+                "solver closed_form with the normal force an input",
+                "normal_force_source = weight (under a moving normal force the bristle has no closed form), or solver dopri5 or radau5",
+            ));
         }
         let tracks_mean = scope.exposes(vr::FT_MEAN) || scope.exposes(vr::S);
         Ok(Longitudinal {
@@ -620,7 +620,7 @@ impl Longitudinal {
     }
 
     /// The general solvers over a sub-step; returns the integrals of the force and its power.
-    fn advance_ode(&mut self, t0: f64, t1: f64) -> Result<(f64, f64), String> {
+    fn advance_ode(&mut self, t0: f64, t1: f64) -> Result<(f64, f64), Error> {
         let saturation = match self.law {
             // Only below alpha 1 is saturation reached in finite time.
             Law::Dahl(law) if law.alpha < 1.0 => self
@@ -677,7 +677,7 @@ impl Longitudinal {
         law: &Dahl,
         (start, end): (f64, f64),
         defer: bool,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         let from = self.pending.unwrap_or(Pending {
             t: start,
             z: self.z,
@@ -688,7 +688,12 @@ impl Longitudinal {
         let s = sgn(self.sliding_direction(self.velocity_at(0.5 * (t0 + t1))));
         let slid = slid_from(self.velocity, self.clock(), self.v_in, t0);
         let Solver::ClosedForm(solver) = &mut self.solver else {
-            return Err("closed_form_substep needs solver closed_form".into());
+            return Err(Error::step(
+                "closed_form",
+                Failure::Misuse,
+                "a closed-form sub-step with another solver",
+                "solver closed_form",
+            ));
         };
         let done = solver.advance(
             law,
@@ -710,7 +715,7 @@ impl Longitudinal {
 
     /// Advances over `[start, end]` (absolute times within the step under way); `open`: `end`
     /// ends the call but is no cut of the sub-step (only closed_form reads it).
-    fn substep(&mut self, start: f64, end: f64, open: bool) -> Result<(), String> {
+    fn substep(&mut self, start: f64, end: f64, open: bool) -> Result<(), Error> {
         // The equations' time counts from the simulation's time, the step's start.
         let (t0, t1) = (start - self.t, end - self.t);
         if let (Some(mean), Some(load)) = (self.fc_mean.as_mut(), self.load) {
@@ -766,7 +771,7 @@ impl Longitudinal {
 }
 
 impl Simulation for Longitudinal {
-    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String> {
+    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), Error> {
         self.read_inputs(values);
         let [velocity, load] = &mut self.inputs;
         if self.velocity == Velocity::Input {
@@ -789,11 +794,16 @@ impl Simulation for Longitudinal {
         if let Some(load) = self.load {
             let load = Ramp::checked("FN_in", load.value, load.rate)?;
             if !(load.value > 0.0 && load.at(h) > 0.0) {
-                return Err(format!(
-                    "the normal force FN_in moves from {} N to {} N over the step from t = {}: expected FN_in > 0 throughout (set a smaller derivative or a shorter step)",
-                    load.value,
-                    load.at(h),
-                    self.t
+                return Err(Error::step(
+                    "input",
+                    Failure::Input,
+                    format!(
+                        "the normal force FN_in moves from {} N to {} N over the step from t = {}",
+                        load.value,
+                        load.at(h),
+                        self.t
+                    ),
+                    "FN_in > 0 throughout (set a smaller derivative or a shorter step)",
                 ));
             }
         }
@@ -808,8 +818,8 @@ impl Simulation for Longitudinal {
             let open =
                 next == t_end && self.pending_allowed() && cut > t_end + self.mean.slack(t_end);
             self.substep(t, next, open)
-                .map_err(|e| super::from_step_start(e, self.t))?;
-            within_step_budget(&self.work, &at_start, next)?;
+                .map_err(|e| e.counted_from(self.t))?;
+            within_step_budget(self.solver.name(), &self.work, &at_start, next)?;
             t = next;
         }
         self.t = t_end;
@@ -821,9 +831,11 @@ impl Simulation for Longitudinal {
             load.rate = 0.0;
         }
         if !self.z.is_finite() {
-            return Err(format!(
-                "the bristle deflection became {} at t = {t_end}",
-                self.z
+            return Err(Error::step(
+                self.solver.name(),
+                Failure::NotFinite,
+                format!("the bristle deflection became {} at t = {t_end}", self.z),
+                "a finite deflection: a tighter tolerance or more steps_per_period",
             ));
         }
         let integrates_work = self.ode_dim == 3
@@ -836,18 +848,18 @@ impl Simulation for Longitudinal {
             // Without the work (W_diss hidden, adaptive solver) there is nothing to check.
             _ if !integrates_work => Ok(()),
             _ => require_passive(
+                self.solver.name(),
                 (self.dissipated_energy(), self.stored_energy()),
                 1e-6,
                 self.solver
                     .ode_tolerance()
                     .map_or(0.0, |rtol| resolved_energy(rtol, self.fc, self.stiffness())),
-                t_end,
-                match self.solver {
+                (t_end, match self.solver {
                     Solver::Exponential | Solver::ClosedForm(_) => {
                         "the scheme is passive at any step, so this is its round-off: use a tolerance or steps_per_period that resolves the bristle"
                     }
                     _ => "use more steps_per_period, or the exponential solver (stable at any step)",
-                },
+                }),
             ),
         }
     }
@@ -920,7 +932,7 @@ impl Simulation for Longitudinal {
         }
     }
 
-    fn restore(&mut self, state: &[f64]) -> Result<(), String> {
+    fn restore(&mut self, state: &[f64]) -> Result<(), Error> {
         let base = 13 + 2 * input_scheme::SAVED;
         let expected = if self.load.is_some() { base + 5 } else { base };
         super::check_saved(
@@ -954,8 +966,9 @@ impl Simulation for Longitudinal {
                 friction_work: state[12],
             }),
             flag => {
-                return Err(format!(
-                    "a LongitudinalFriction state's pending sub-step flag is {flag}: expected 0, or 1 with solver closed_form"
+                return Err(Error::state(
+                    format!("a LongitudinalFriction state's pending sub-step flag of {flag}"),
+                    "0, or 1 with solver closed_form",
                 ))
             }
         };
@@ -969,11 +982,7 @@ impl Simulation for Longitudinal {
         Ok(())
     }
 
-    fn set_input_derivative(
-        &mut self,
-        value_reference: u32,
-        derivative: f64,
-    ) -> Result<(), String> {
+    fn set_input_derivative(&mut self, value_reference: u32, derivative: f64) -> Result<(), Error> {
         // Kept when the input is not read too, and ignored there like the input itself. The
         // ramps' rates are what the outputs' derivatives read until the step.
         match (value_reference, self.load.as_mut()) {
@@ -986,7 +995,7 @@ impl Simulation for Longitudinal {
                 self.inputs[1].set_derivative(derivative);
             }
             (vr::FN_IN, None) => {}
-            _ => return Err(format!("value reference {value_reference} is not an input")),
+            _ => return Err(super::not_an_input(value_reference)),
         }
         Ok(())
     }
@@ -1009,7 +1018,7 @@ impl Simulation for Longitudinal {
     /// kt z z' exactly; FT' exactly for Coulomb (away from a sign change) and Dahl (kt z'), and
     /// for LuGre, whose damping term needs z'', as a centred difference along the solution;
     /// FT_mean's and S's as [`PeriodMean::rate`].
-    fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {
+    fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, Error> {
         let mut now = self.clone();
         now.read_inputs(values);
         let z_rate = now.bristle_rate_at(0.0, now.z);
@@ -1031,11 +1040,7 @@ impl Simulation for Longitudinal {
                 };
                 -100.0 * (mean_rate * reference - mean * reference_rate) / (reference * reference)
             }
-            _ => {
-                return Err(format!(
-                    "value reference {value_reference} has no derivative here: expected an output"
-                ))
-            }
+            _ => return Err(super::no_output_derivative(value_reference)),
         })
     }
 }
@@ -1090,7 +1095,7 @@ impl Longitudinal {
 
 /// Runs the prescribed-velocity model for `periods` vibration periods and returns the mean force
 /// over the last one: the quantity of the paper's Tables 1-3.
-pub fn steady_mean_force(values: &ValueSet, periods: u32) -> Result<f64, String> {
+pub fn steady_mean_force(values: &ValueSet, periods: u32) -> Result<f64, Error> {
     let mut sim = Longitudinal::new(values, 0.0)?;
     let period = 1.0 / sim.f;
     for _ in 0..periods {

@@ -16,15 +16,16 @@ pub mod stability;
 pub mod switch;
 pub mod transverse;
 
+use crate::error::{Error, Failure};
 use crate::variables::values::ValueSet;
 use crate::variables::variable::ModelTable;
 pub use scope::Scope;
 
-/// A model running in one instance: its state, advanced in time. Errors are messages for the
-/// user: what was wrong and what was expected.
+/// A model running in one instance: its state, advanced in time. Errors say what was wrong and
+/// what was expected ([`Error`]).
 pub trait Simulation: Send {
     /// Advances from the simulation's current time by `h > 0`, reading inputs from `values`.
-    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String>;
+    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), Error>;
 
     /// Advances by `h > 0` where the step ends inside one already taken and read, which cannot
     /// fail (true); false, with nothing changed, where it does not. fmi2DoStep asks this first
@@ -55,18 +56,14 @@ pub trait Simulation: Send {
 
     /// Restores a state written by [`Simulation::save`] of a simulation built from the same
     /// values.
-    fn restore(&mut self, state: &[f64]) -> Result<(), String>;
+    fn restore(&mut self, state: &[f64]) -> Result<(), Error>;
 
     /// Takes the first time derivative of an input for the coming step only: the input then
     /// moves as `value + derivative (t - t_step)` over it. Models that hold their inputs over
     /// each step refuse (the default).
-    fn set_input_derivative(
-        &mut self,
-        value_reference: u32,
-        derivative: f64,
-    ) -> Result<(), String> {
+    fn set_input_derivative(&mut self, value_reference: u32, derivative: f64) -> Result<(), Error> {
         let _ = (value_reference, derivative);
-        Err(HELD_INPUTS.to_string())
+        Err(held_inputs())
     }
 
     /// Drops the derivative set for an input, set again without one: over the coming step it
@@ -96,9 +93,12 @@ pub trait Simulation: Send {
 
     /// The first time derivative of an output now, where it is exact and cheap (the inputs'
     /// current values are in `values`); refuses the others (the default: all).
-    fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {
+    fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, Error> {
         let _ = (value_reference, values);
-        Err("this model gives no output derivatives (maxOutputDerivativeOrder = 0)".to_string())
+        Err(Error::refused(
+            format!("value reference {value_reference} has no derivative here"),
+            "none: this model gives no output derivatives (maxOutputDerivativeOrder = 0)",
+        ))
     }
 }
 
@@ -124,14 +124,6 @@ pub fn clock_warning(t: f64, (period, tolerance): (f64, f64)) -> Option<String> 
     })
 }
 
-/// A solver's failure, whose times count from the communication step's start (the equations'
-/// time starts there, so the clock's round-off does not cut the steps): says so, and where.
-pub fn from_step_start(message: String, start: f64) -> String {
-    format!(
-        "{message} (the solver's times count from the communication step's start, t = {start} s)"
-    )
-}
-
 /// Whether `[start, end]` is a few ulps of the absolute time long: sub-step ends (a period's
 /// boundary, a kink) that met in the clock's round-off. Nothing happens over it that the clock
 /// resolves, and a solver counting time from the step's start would take it for a real interval.
@@ -144,13 +136,33 @@ pub fn within_round_off(start: f64, end: f64) -> bool {
 pub const FIXED_STEP_ACCURACY: f64 = 1e-9;
 
 /// Why a simulation without input derivatives refuses one.
-pub const HELD_INPUTS: &str =
-    "this model holds its inputs over each step (canInterpolateInputs = false)";
+pub fn held_inputs() -> Error {
+    Error::refused(
+        "an input's derivative",
+        "none: this model holds its inputs over each step (canInterpolateInputs = false)",
+    )
+}
+
+/// Why a simulation refuses a derivative for `value_reference`, which is not one of its inputs.
+pub fn not_an_input(value_reference: u32) -> Error {
+    Error::refused(
+        format!("value reference {value_reference}"),
+        "an input's value reference",
+    )
+}
+
+/// Why a simulation refuses the derivative of `value_reference`, which it does not give.
+pub fn no_output_derivative(value_reference: u32) -> Error {
+    Error::refused(
+        format!("value reference {value_reference} has no derivative here"),
+        "an output",
+    )
+}
 
 /// Builds a simulation at `start_time` from parameter values, refusing inconsistent ones; `scope`
 /// says what the interface hides, so the simulation may skip what nobody can see or change.
 pub type Builder =
-    fn(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Box<dyn Simulation>, String>;
+    fn(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Box<dyn Simulation>, Error>;
 
 /// A model this crate exports, everything about it in one place: its interface (the variable
 /// table, with which switches select which inputs and its law and tolerance parameters), how to
@@ -200,24 +212,48 @@ fn require(
     value_reference: u32,
     ok: fn(f64) -> bool,
     expected: &str,
-) -> Result<f64, String> {
+) -> Result<f64, Error> {
     let x = values.real(value_reference);
     if ok(x) {
         Ok(x)
     } else {
-        let name = values
-            .table
-            .variable(value_reference)
-            .map_or("?", |v| v.name);
-        Err(format!(
-            "{name} = {x} is out of range: expected {}",
-            expected.replace("{name}", name)
-        ))
+        let name = name_of(values, value_reference);
+        Err(Error::value(name, x, expected.replace("{name}", name)))
     }
 }
 
+/// The name of the variable `value_reference` in `values`' table.
+fn name_of(values: &ValueSet, value_reference: u32) -> &'static str {
+    values
+        .table
+        .variable(value_reference)
+        .map_or("?", |v| v.name)
+}
+
+/// An adaptive solver's relative tolerance, within what the solvers can meet.
+pub fn require_tolerance(values: &ValueSet, value_reference: u32) -> Result<f64, Error> {
+    require(
+        values,
+        value_reference,
+        |x| (1e-14..=1e-2).contains(&x),
+        "1e-14 <= {name} <= 0.01",
+    )
+}
+
+/// A fixed-step solver's steps per period: at least 1.
+pub fn require_steps(values: &ValueSet, value_reference: u32) -> Result<u32, Error> {
+    let steps = values.integer(value_reference);
+    u32::try_from(steps)
+        .ok()
+        .filter(|&s| s >= 1)
+        .ok_or_else(|| {
+            let name = name_of(values, value_reference);
+            Error::value(name, steps, format!("{name} >= 1"))
+        })
+}
+
 /// A strictly positive, finite parameter.
-pub fn require_positive(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
+pub fn require_positive(values: &ValueSet, value_reference: u32) -> Result<f64, Error> {
     require(
         values,
         value_reference,
@@ -227,7 +263,7 @@ pub fn require_positive(values: &ValueSet, value_reference: u32) -> Result<f64, 
 }
 
 /// A finite parameter >= 0.
-pub fn require_non_negative(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
+pub fn require_non_negative(values: &ValueSet, value_reference: u32) -> Result<f64, Error> {
     require(
         values,
         value_reference,
@@ -238,30 +274,41 @@ pub fn require_non_negative(values: &ValueSet, value_reference: u32) -> Result<f
 
 /// Errs unless the start time a simulation is built at is a finite number (the FMI layer checks it
 /// too; simulations are also built in-process).
-pub fn require_finite_start(start_time: f64) -> Result<(), String> {
+pub fn require_finite_start(start_time: f64) -> Result<(), Error> {
     if start_time.is_finite() {
         Ok(())
     } else {
-        Err(format!("start time {start_time} is not a finite number"))
+        Err(Error::value("start time", start_time, "a finite number"))
+    }
+}
+
+/// A communication step a simulation can take: finite and > 0 (the FMI layer checks it too;
+/// simulations are also stepped in-process).
+pub fn require_step(h: f64) -> Result<(), Error> {
+    if h > 0.0 && h.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::value("communication step", h, "a finite step > 0"))
     }
 }
 
 /// Any finite value.
-pub fn require_finite(values: &ValueSet, value_reference: u32) -> Result<f64, String> {
+pub fn require_finite(values: &ValueSet, value_reference: u32) -> Result<f64, Error> {
     require(values, value_reference, f64::is_finite, "a finite number")
 }
 
 /// Errs unless a saved state (`Simulation::restore`'s input) has `expected` numbers, all finite.
-pub fn check_saved(model: &str, state: &[f64], expected: usize) -> Result<(), String> {
+pub fn check_saved(model: &str, state: &[f64], expected: usize) -> Result<(), Error> {
     let bad = state.iter().filter(|x| !x.is_finite()).count();
     if state.len() != expected {
-        Err(format!(
-            "a {model} state has {expected} numbers, got {}",
-            state.len()
+        Err(Error::state(
+            format!("a {model} state of {} numbers", state.len()),
+            format!("{expected}"),
         ))
     } else if bad > 0 {
-        Err(format!(
-            "a {model} state has {expected} finite numbers, got {bad} that are not"
+        Err(Error::state(
+            format!("a {model} state with {bad} numbers that are not finite"),
+            format!("{expected} finite numbers"),
         ))
     } else {
         Ok(())
@@ -275,19 +322,22 @@ pub fn check_saved(model: &str, state: &[f64], expected: usize) -> Result<(), St
 /// finite but meaningless. The tolerance is far above the solvers' truncation error and far
 /// below what an unstable step produces.
 pub fn require_passive(
+    solver: &'static str,
     (dissipated, stored): (f64, f64),
     tolerance: f64,
     resolved: f64,
-    t: f64,
-    advice: &str,
-) -> Result<(), String> {
+    (t, advice): (f64, &str),
+) -> Result<(), Error> {
     let scale = dissipated.abs() + stored.abs();
     if dissipated.is_finite() && stored.is_finite() && dissipated >= -(tolerance * scale + resolved)
     {
         Ok(())
     } else {
-        Err(format!(
-            "the contact created energy by t = {t} (dissipated {dissipated:e} J, stored {stored:e} J): the integration is unstable; {advice}"
+        Err(Error::step(
+            solver,
+            Failure::CreatedEnergy,
+            format!("the contact created energy by t = {t} (dissipated {dissipated:e} J, stored {stored:e} J): the integration is unstable"),
+            format!("a passive contact: {advice}"),
         ))
     }
 }

@@ -31,15 +31,19 @@ pub use equations::{Equations, Forced};
 use super::switch::{
     ForceSource, OscillatorInitialState, OscillatorLaw, OscillatorSolver, Switch as _,
 };
-use super::{require_finite, require_non_negative, require_positive, Scope, Simulation};
+use super::{
+    require_finite, require_non_negative, require_positive, require_steps, Scope, Simulation,
+};
+use crate::error::{Error, Failure};
 use crate::friction::regularized::{stiction_excess, Regularized};
 use crate::friction::sgn;
 use crate::models::oscillator::table::{vr, TABLE};
 use crate::solve::dopri::Dopri5;
 use crate::solve::method::Method;
 use crate::solve::radau::StepPolynomial;
+use crate::solve::shooting::{self, NoOrbit};
 use crate::solve::stepping::{CallEnd, Stepping};
-use crate::solve::{shooting, within_step_budget, Ode, Work};
+use crate::solve::{within_step_budget, Ode, Work};
 use crate::variables::values::ValueSet;
 use exact::{Event, Mode, State, Switch};
 use linear_phase::LinearPhase;
@@ -152,29 +156,38 @@ pub fn build(
     values: &ValueSet,
     start_time: f64,
     scope: &Scope,
-) -> Result<Box<dyn Simulation>, String> {
+) -> Result<Box<dyn Simulation>, Error> {
     Ok(Box::new(Oscillator::with_scope(values, start_time, scope)?))
 }
 
 impl Oscillator {
+    /// The solver's name, as the switch spells it (in its errors).
+    fn solver_name(&self) -> &'static str {
+        match &self.core {
+            Core::Exact(_) => "exact",
+            Core::Regularized(_, solver) => solver.name(),
+        }
+    }
+
     /// The full model.
-    pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, String> {
+    pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, Error> {
         Oscillator::with_scope(values, start_time, &Scope::full())
     }
 
     /// The simulation for an interface that hides what `scope` lists.
-    pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
+    pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, Error> {
         let mut sim = Oscillator::starting_from(values, start_time, scope)?;
         if OscillatorInitialState::read(values, vr::INITIAL)? == OscillatorInitialState::Periodic {
             if ForceSource::read(values, vr::FORCE_SOURCE)? == ForceSource::Input {
-                return Err(
-                    "initial = periodic needs the force prescribed (force_source = prescribed): with an input force the motion has no period known at initialization"
-                        .into(),
-                );
+                return Err(Error::combination(
+                    "initial = periodic with an input force: the motion has no period known at initialization",
+                    "the force prescribed (force_source = prescribed)",
+                ));
             }
-            if let Err(why) = sim.settle_on_orbit(values, scope) {
+            if let Err(no_orbit) = sim.settle_on_orbit(values, scope) {
                 let notice = format!(
-                    "initial = periodic: {why}; the run starts from (u0, v0) instead and goes through the transient"
+                    "initial = periodic: {}; the run starts from (u0, v0) instead and goes through the transient",
+                    no_orbit.why
                 );
                 sim.unresolved = Some(match sim.unresolved.take() {
                     Some(before) => format!("{before}; {notice}"),
@@ -188,7 +201,7 @@ impl Oscillator {
     /// Replaces (u0, v0) by the periodic orbit's state at the start time, found by shooting on
     /// the one-period map ([`crate::solve::shooting`]) with this simulation's law and solver, from
     /// a period after (u0, v0). The periods it integrates count in [`Oscillator::work`].
-    fn settle_on_orbit(&mut self, values: &ValueSet, scope: &Scope) -> Result<(), String> {
+    fn settle_on_orbit(&mut self, values: &ValueSet, scope: &Scope) -> Result<(), NoOrbit> {
         // Without a spring u enters no force: the map's Jacobian has a zero column (to the
         // differences' noise, so Newton's method would step anywhere along it).
         if values.real(vr::K) == 0.0 {
@@ -219,14 +232,16 @@ impl Oscillator {
             );
             Ok(vec![sim.state.u, sim.state.v])
         };
-        let orbit = map(&[self.state.u, self.state.v], 1e-6).and_then(|guess| {
-            // The states' scale: the swing of that first period (the atol where it is still).
-            let u_scale = swing.get().max(values.real(vr::ATOL));
-            let w = values.real(vr::W);
-            let scale = [u_scale, u_scale * w];
-            shooting::periodic_orbit(&guess, (&scale, &[false, false]), rtol, &mut map)
-                .map_err(String::from)
-        });
+        let orbit = map(&[self.state.u, self.state.v], 1e-6)
+            .map_err(NoOrbit::from)
+            .and_then(|guess| {
+                // The states' scale: the swing of that first period (the atol where it is
+                // still).
+                let u_scale = swing.get().max(values.real(vr::ATOL));
+                let w = values.real(vr::W);
+                let scale = [u_scale, u_scale * w];
+                shooting::periodic_orbit(&guess, (&scale, &[false, false]), rtol, &mut map)
+            });
         self.work = self.work.plus(&work);
         let orbit = orbit?;
         let values = at(&orbit.state, rtol);
@@ -239,7 +254,7 @@ impl Oscillator {
     }
 
     /// The simulation at `start_time` from (u0, v0).
-    fn starting_from(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
+    fn starting_from(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, Error> {
         let m = require_positive(values, vr::M)?;
         let c = require_non_negative(values, vr::C)?;
         let k = require_non_negative(values, vr::K)?;
@@ -252,17 +267,12 @@ impl Oscillator {
         let v0 = require_finite(values, vr::V0)?;
         let rtol = require_positive(values, vr::RTOL)?;
         let atol = require_positive(values, vr::ATOL)?;
-        let steps = values.integer(vr::STEPS_PER_PERIOD);
-        if steps < 1 {
-            return Err(format!(
-                "steps_per_period = {steps} is out of range: expected steps_per_period >= 1"
-            ));
-        }
-        let steps = f64::from(steps);
+        let steps = f64::from(require_steps(values, vr::STEPS_PER_PERIOD)?);
         let ha = stiction_excess(h, d, da);
         if !ha.is_finite() {
-            return Err(format!(
-                "ha = h*Da/D = {ha} is not finite: expected Da/D of moderate size (h = {h}, D = {d}, Da = {da})"
+            return Err(Error::combination(
+                format!("ha = h*Da/D = {ha} (h = {h}, D = {d}, Da = {da})"),
+                "a finite ha: Da/D of moderate size",
             ));
         }
         let plant = Forced {
@@ -375,7 +385,7 @@ impl Oscillator {
         log: Option<&mut Vec<Event>>,
         at_start: &Work,
         mut last: Option<&mut StepPolynomial>,
-    ) -> Result<f64, String> {
+    ) -> Result<f64, Error> {
         let held = self.held;
         match &mut self.core {
             Core::Exact(switch) => switch.advance(
@@ -390,7 +400,7 @@ impl Oscillator {
                 let tracks = self.tracks_amplitude;
                 let mut largest = self.state.u.abs();
                 while self.state.t < t_end {
-                    within_step_budget(&self.work, at_start, self.state.t)?;
+                    within_step_budget(solver.name(), &self.work, at_start, self.state.t)?;
                     let t0 = self.state.t;
                     // Far from t = 0 a sub-step can be lost to round-off (t0 + max == t0):
                     // then the solver takes the rest at once rather than the loop stalling.
@@ -523,7 +533,7 @@ impl Oscillator {
         t_end: f64,
         boundary: f64,
         at_start: &Work,
-    ) -> Result<bool, String> {
+    ) -> Result<bool, Error> {
         let Core::Regularized(_, Solver::General(Method::Radau5(radau))) = &mut self.core else {
             return Ok(false);
         };
@@ -582,16 +592,14 @@ impl Oscillator {
         h: f64,
         held: f64,
         mut log: Option<&mut Vec<Event>>,
-    ) -> Result<(), String> {
-        if !(h > 0.0 && h.is_finite()) {
-            return Err(format!("communication step {h}: expected a step > 0"));
-        }
+    ) -> Result<(), Error> {
+        super::require_step(h)?;
         self.held = held;
         let t_end = self.state.t + h;
         let at_start = self.work;
         let done = self.read_step_ahead(t_end);
         while !done && self.state.t < t_end {
-            within_step_budget(&self.work, &at_start, self.state.t)?;
+            within_step_budget(self.solver_name(), &self.work, &at_start, self.state.t)?;
             let boundary = if self.tracks_amplitude {
                 self.amplitude.next_boundary()
             } else {
@@ -627,9 +635,14 @@ impl Oscillator {
         {
             Ok(())
         } else {
-            Err(format!(
-                "the motion became non-finite at t = {t_end} (u = {}, u' = {})",
-                self.state.u, self.state.v
+            Err(Error::step(
+                self.solver_name(),
+                Failure::NotFinite,
+                format!(
+                    "the motion became non-finite at t = {t_end} (u = {}, u' = {})",
+                    self.state.u, self.state.v
+                ),
+                "a finite motion: a tighter tolerance, more steps_per_period or the radau5 solver",
             ))
         }
     }
@@ -741,7 +754,7 @@ fn turning_point(
     (t0, y0): (f64, [f64; 3]),
     (t1, y1): (f64, [f64; 3]),
     work: &mut Work,
-) -> Result<f64, String> {
+) -> Result<f64, Error> {
     let atol = solver.atol();
     let (mut lo, mut y_lo, mut solver_lo) = (t0, y0, solver);
     let (mut hi, mut v_hi) = (t1, y1[1]);
@@ -785,7 +798,7 @@ fn turning_point(
 }
 
 impl Simulation for Oscillator {
-    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String> {
+    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), Error> {
         let held = values.real(vr::P_IN);
         self.step_logged(h, held, None)
     }
@@ -868,7 +881,7 @@ impl Simulation for Oscillator {
         }
     }
 
-    fn restore(&mut self, state: &[f64]) -> Result<(), String> {
+    fn restore(&mut self, state: &[f64]) -> Result<(), Error> {
         super::check_saved(TABLE.model_identifier, state, STATE_SAVED + AHEAD_SAVED)?;
         let (proposed, ahead_limit) = (state[STATE_SAVED], state[STATE_SAVED + 1]);
         let ahead = &state[STATE_SAVED + 2..];
@@ -878,9 +891,12 @@ impl Simulation for Oscillator {
                 let (step, rest) = ahead[1..].split_at(StepPolynomial::saved_len(3));
                 let step = StepPolynomial::read(3, step).filter(|_| self.takes_steps_ahead);
                 let Some(step) = step else {
-                    return Err(format!(
-                        "a {} state holds a step taken ahead that this simulation cannot take",
-                        TABLE.model_identifier
+                    return Err(Error::state(
+                        format!(
+                            "a {} state holding a step taken ahead that this simulation cannot take",
+                            TABLE.model_identifier
+                        ),
+                        "a step taken ahead by this simulation's solver, or none",
                     ));
                 };
                 Some(Ahead {
@@ -913,9 +929,9 @@ impl Simulation for Oscillator {
                 self.ahead_limit = ahead_limit;
                 Ok(())
             }
-            None => Err(format!(
-                "a DryFrictionOscillator state has a mode of 0 or +-1, got {}",
-                state[3]
+            None => Err(Error::state(
+                format!("a DryFrictionOscillator state with the mode {}", state[3]),
+                "a mode of 0 or +-1",
             )),
         }
     }
@@ -923,7 +939,7 @@ impl Simulation for Oscillator {
 
 /// Runs a simulation from rest for `periods` forcing periods in steps of 1/50 period and returns
 /// `u_amplitude` at the end: the steady amplitude once the free response has died out.
-pub fn steady_amplitude(values: &ValueSet, periods: u32) -> Result<f64, String> {
+pub fn steady_amplitude(values: &ValueSet, periods: u32) -> Result<f64, Error> {
     let mut sim = Oscillator::new(values, 0.0)?;
     let step = sim.amplitude.period / 50.0;
     for _ in 0..periods * 50 {
@@ -938,7 +954,7 @@ pub fn trajectory(
     periods: u32,
     shown: u32,
     per_period: u32,
-) -> Result<Vec<[f64; 5]>, String> {
+) -> Result<Vec<[f64; 5]>, Error> {
     let mut sim = Oscillator::new(values, 0.0)?;
     let step = sim.amplitude.period / f64::from(per_period);
     let mut samples = Vec::new();

@@ -151,7 +151,7 @@ fn pin(run: &Run) -> String {
 
 fn pin_with<S: Simulation + ?Sized, B: std::ops::DerefMut<Target = S>>(
     run: &Run,
-    build: impl Fn() -> Result<B, String>,
+    build: impl Fn() -> Result<B, crate::error::Error>,
     work: impl Fn(&S) -> Option<Work>,
 ) -> String {
     let outputs: Vec<u32> = run
@@ -166,7 +166,7 @@ fn pin_with<S: Simulation + ?Sized, B: std::ops::DerefMut<Target = S>>(
         Ok(sim) => sim,
         Err(message) => {
             let mut hash = Fnv::new();
-            hash.text(&message);
+            hash.text(&message.to_string());
             return format!("build-error {:016x}", hash.0);
         }
     };
@@ -202,7 +202,7 @@ fn pin_with<S: Simulation + ?Sized, B: std::ops::DerefMut<Target = S>>(
             sim.do_step(h, &values)
         };
         if let Err(message) = result {
-            outputs_hash.text(&message);
+            outputs_hash.text(&message.to_string());
             return format!(
                 "step-{k}-error {:016x} {:016x}{}",
                 outputs_hash.0,

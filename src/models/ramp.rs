@@ -1,6 +1,7 @@
 //! An input over the step under way, on the equations' time (0 at the step's start): its value
 //! there, and the rate the master set for the step with fmi2SetRealInputDerivatives (0: held).
 
+use crate::error::Error;
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Ramp {
     pub value: f64,
@@ -23,12 +24,14 @@ impl Ramp {
     }
 
     /// The value and rate as read from `name`, the rate taken for one step.
-    pub fn checked(name: &str, value: f64, rate: f64) -> Result<Ramp, String> {
+    pub fn checked(name: &'static str, value: f64, rate: f64) -> Result<Ramp, Error> {
         if value.is_finite() && rate.is_finite() {
             Ok(Ramp { value, rate })
         } else {
-            Err(format!(
-                "{name} = {value} with derivative {rate}: expected finite numbers"
+            Err(Error::value_found(
+                name,
+                format!("{name} = {value} with derivative {rate}"),
+                "finite numbers",
             ))
         }
     }

@@ -5,6 +5,7 @@
 //! an item in one place and not the other fails the build's tests instead of falling back to a
 //! default.
 
+use crate::error::Error;
 use crate::models::{
     drive::table as drive, longitudinal::table as longitudinal, oscillator::table as oscillator,
     transverse::table as transverse,
@@ -24,7 +25,7 @@ pub trait Switch: Copy + Sized + 'static {
     fn name(self) -> &'static str;
 
     /// The switch's current value in `values`.
-    fn read(values: &ValueSet, value_reference: u32) -> Result<Self, String> {
+    fn read(values: &ValueSet, value_reference: u32) -> Result<Self, Error> {
         let number = values.integer(value_reference);
         let variable = values
             .table
@@ -35,9 +36,10 @@ pub trait Switch: Copy + Sized + 'static {
             .and_then(|k| k.checked_sub(1))
             .and_then(|k| Self::ALL.get(k).copied())
             .ok_or_else(|| {
-                format!(
-                    "{variable} = {number} names no item: expected one of {}",
-                    Self::TYPE.listing()
+                Error::value_found(
+                    variable,
+                    format!("{variable} = {number} names no item"),
+                    format!("one of {}", Self::TYPE.listing()),
                 )
             })
     }
@@ -171,6 +173,7 @@ switch!(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::Kind;
     use crate::models::longitudinal::table::{vr, TABLE};
     use crate::models::MODELS;
 
@@ -225,8 +228,9 @@ mod tests {
             values.set(vr::LAW, number);
             let law = LongitudinalLaw::read(&values, vr::LAW);
             assert_eq!(law.as_ref().ok().copied(), read);
-            if let Err(message) = law {
-                assert!(message.contains("1 coulomb, 2 dahl, 3 lugre"), "{message}");
+            if let Err(error) = law {
+                assert_eq!(error.kind, Kind::Value { name: "law" });
+                assert_eq!(error.expected, "one of 1 coulomb, 2 dahl, 3 lugre");
             }
         }
     }

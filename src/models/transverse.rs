@@ -35,8 +35,9 @@ use super::ramp::Ramp;
 use super::switch::{self, DriveSource, InitialState, InputScheme, Switch, TransverseSolver};
 use super::{
     require_finite, require_finite_start, require_non_negative, require_passive, require_positive,
-    resolved_energy, Scope, Simulation,
+    require_steps, require_tolerance, resolved_energy, Scope, Simulation,
 };
+use crate::error::{Error, Failure};
 use crate::friction::lugre2d::{LuGre2d, SlipLaw};
 use crate::models::transverse::table::vr;
 use crate::solve::phase::turns;
@@ -141,25 +142,25 @@ pub fn build(
     values: &ValueSet,
     start_time: f64,
     scope: &Scope,
-) -> Result<Box<dyn Simulation>, String> {
+) -> Result<Box<dyn Simulation>, Error> {
     Ok(Box::new(Transverse::with_scope(values, start_time, scope)?))
 }
 
 impl Transverse {
     /// The full model.
-    pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, String> {
+    pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, Error> {
         Transverse::with_scope(values, start_time, &Scope::full())
     }
 
     /// The simulation for an interface that hides what `scope` lists.
-    pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, String> {
+    pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, Error> {
         let mut sim = Transverse::starting_from(values, start_time, scope, None)?;
         if InitialState::read(values, vr::INITIAL)? == InitialState::Periodic {
             if sim.drive == Drive::Input || sim.p.held {
-                return Err(
-                    "initial = periodic needs the body free and the drive prescribed (body = free, drive_source = prescribed): with an input drive the motion has no period known at initialization"
-                        .into(),
-                );
+                return Err(Error::combination(
+                    "initial = periodic with the body held or an input drive: the motion has no period known at initialization",
+                    "the body free and the drive prescribed (body = free, drive_source = prescribed)",
+                ));
             }
             if let Err(no_orbit) = sim.settle_on_orbit(values, scope) {
                 let start = if no_orbit.nearest.is_some() {
@@ -248,7 +249,7 @@ impl Transverse {
         start_time: f64,
         scope: &Scope,
         motion: Option<&[f64]>,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, Error> {
         require_finite_start(start_time)?;
         let m = require_positive(values, vr::M)?;
         let mu = require_positive(values, vr::MU)?;
@@ -262,9 +263,7 @@ impl Transverse {
         let hd = require_non_negative(values, vr::HD)?;
         let eta = values.real(vr::ETA);
         if !(0.0..=1.0).contains(&eta) {
-            return Err(format!(
-                "eta = {eta} is out of range: expected 0 <= eta <= 1"
-            ));
+            return Err(Error::value("eta", eta, "0 <= eta <= 1"));
         }
         let va = require_non_negative(values, vr::VA)?;
         let f = require_positive(values, vr::F)?;
@@ -305,21 +304,10 @@ impl Transverse {
             Drive::Input => vd_in,
         };
         if !vd_start.is_finite() {
-            return Err(format!("vd_in = {vd_in} is not a finite number"));
+            return Err(Error::value("vd_in", vd_in, "a finite number"));
         }
-        let steps = values.integer(vr::STEPS_PER_PERIOD);
-        if steps < 1 {
-            return Err(format!(
-                "steps_per_period = {steps} is out of range: expected steps_per_period >= 1"
-            ));
-        }
-        let steps = steps as u32;
-        let rtol = values.real(vr::TOLERANCE);
-        if !(1e-14..=1e-2).contains(&rtol) {
-            return Err(format!(
-                "tolerance = {rtol} is out of range: expected 1e-14 <= tolerance <= 0.01"
-            ));
-        }
+        let steps = require_steps(values, vr::STEPS_PER_PERIOD)?;
+        let rtol = require_tolerance(values, vr::TOLERANCE)?;
 
         // Initial state.
         let mut y = [0.0; MAX_DIM];
@@ -432,30 +420,36 @@ impl Transverse {
 
     /// Refuses the state `y` at `t`, with its contact force FF and deflection s, where it is
     /// not finite or the contact gave back more energy than the tolerance resolves.
-    fn check_motion(&self, t: f64, y: &[f64; MAX_DIM], (ff, s): (f64, f64)) -> Result<(), String> {
+    fn check_motion(&self, t: f64, y: &[f64; MAX_DIM], (ff, s): (f64, f64)) -> Result<(), Error> {
         if y.iter().all(|v| v.is_finite()) && ff.is_finite() {
             // The bristle damping ht (eq. 5) can return a little energy in transients, hence
             // the looser tolerance than scene L's.
             let kt = self.p.law.kt;
             require_passive(
+                self.solver.name(),
                 (y[W] - 0.5 * kt * s * s, 0.5 * kt * s * s),
                 1e-3,
                 self.solver
                     .rtol()
                     .map_or(0.0, |rtol| resolved_energy(rtol, self.fc, kt)),
-                t,
-                "use more steps_per_period, or the dopri5 or radau5 solver",
+                (
+                    t,
+                    "use more steps_per_period, or the dopri5 or radau5 solver",
+                ),
             )
         } else {
-            Err(format!(
-                "the state became non-finite at t = {t}; choose a smaller step or the dopri5 solver"
+            Err(Error::step(
+                self.solver.name(),
+                Failure::NotFinite,
+                format!("the state became non-finite at t = {t}"),
+                "a finite state: a smaller step or the dopri5 solver",
             ))
         }
     }
 
     /// Advances over one sub-step `[start, end]` that lies within one period; `origin` is the
     /// absolute time the equations' time counts from (the step's start).
-    fn substep(&mut self, origin: f64, (start, end): (f64, f64), vd: Ramp) -> Result<(), String> {
+    fn substep(&mut self, origin: f64, (start, end): (f64, f64), vd: Ramp) -> Result<(), Error> {
         let (t0, t1) = (start - origin, end - origin);
         // Sub-step ends that met in the round-off of the absolute time (a period's boundary a
         // few ulps from the master's point): one explicit step, as the adaptive solvers took
@@ -506,16 +500,14 @@ impl Transverse {
 }
 
 impl Simulation for Transverse {
-    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), String> {
-        if !(h > 0.0 && h.is_finite()) {
-            return Err(format!("communication step {h} s: expected a step > 0"));
-        }
+    fn do_step(&mut self, h: f64, values: &ValueSet) -> Result<(), Error> {
+        super::require_step(h)?;
         // A derivative applies to this step only (fmi2DoStep restores it with the rest of the
         // state when the step fails).
         let vd = if self.drive == Drive::Input {
             let v = values.real(vr::VD_IN);
             if !v.is_finite() {
-                return Err(format!("vd_in = {v} is not a finite number"));
+                return Err(Error::value("vd_in", v, "a finite number"));
             }
             self.vd_held = v;
             self.vd_input.ramp(self.input_scheme, self.t, v, h)
@@ -539,7 +531,7 @@ impl Simulation for Transverse {
         let mut origin = self.t;
         let mut t = self.t;
         while !done && t < t_end {
-            within_step_budget(&self.work, &at_start, t)?;
+            within_step_budget(self.solver.name(), &self.work, &at_start, t)?;
             // Sub-steps end on period boundaries only for the mean (dopri5 and radau5 restart
             // there, a step or two each).
             let boundary = if self.trim.mean {
@@ -565,7 +557,7 @@ impl Simulation for Transverse {
             }
             behind = None;
             self.substep(origin, (t, next), vd)
-                .map_err(|e| super::from_step_start(e, origin))?;
+                .map_err(|e| e.counted_from(origin))?;
             t = next;
         }
         self.t = t_end;
@@ -644,7 +636,7 @@ impl Simulation for Transverse {
         }
     }
 
-    fn restore(&mut self, state: &[f64]) -> Result<(), String> {
+    fn restore(&mut self, state: &[f64]) -> Result<(), Error> {
         let base = 2 + input_scheme::SAVED + MAX_DIM + 3;
         let solver = base + self.solver.saved_len();
         // The step taken ahead, if any (a flag first).
@@ -672,13 +664,9 @@ impl Simulation for Transverse {
         Ok(())
     }
 
-    fn set_input_derivative(
-        &mut self,
-        value_reference: u32,
-        derivative: f64,
-    ) -> Result<(), String> {
+    fn set_input_derivative(&mut self, value_reference: u32, derivative: f64) -> Result<(), Error> {
         if value_reference != vr::VD_IN {
-            return Err(format!("value reference {value_reference} is not an input"));
+            return Err(super::not_an_input(value_reference));
         }
         // Kept when vd is prescribed too, and ignored there like vd_in itself.
         self.vd_input.set_derivative(derivative);
@@ -696,7 +684,7 @@ impl Simulation for Transverse {
     /// exactly; s', beta' and W_diss' exactly from the bristle rate z'; FFx_mean's as
     /// [`PeriodMean::rate`]; FF, FFx and FFy, which need the bristle's second derivative, as a
     /// centred difference along the solution (`Transverse::force_rates`).
-    fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, String> {
+    fn output_derivative(&self, value_reference: u32, values: &ValueSet) -> Result<f64, Error> {
         let vd = self.drive_velocity_now(values);
         let y = self.state();
         let mut dydt = [0.0; MAX_DIM];
@@ -726,11 +714,7 @@ impl Simulation for Transverse {
                 let rate = self.force_rates(&y, &dydt)[1];
                 self.mean_now(&y).rate(self.t, ffx, rate)
             }
-            _ => {
-                return Err(format!(
-                    "value reference {value_reference} has no derivative here: expected an output"
-                ))
-            }
+            _ => return Err(super::no_output_derivative(value_reference)),
         })
     }
 }

@@ -12,11 +12,13 @@
 //! retaken to end on it: no kink is foreseen from the step before, so where kinks come every
 //! few steps (the split law) dopri5 is cheaper.
 
+use super::failures;
 use super::narrow::{Verdict, Watch};
 use super::stepping::Stepping;
 use super::stiffness::StiffnessTest;
 use super::switching::{crossed, Smooth, Switching, MAX_SWITCHES};
 use super::{Integrator, Ode, Work, MAX_DIM};
+use crate::error::Error;
 
 /// The nodes: the twelve stages of a step, the end (where the next step's first stage is
 /// taken) and the three stages only the dense output takes.
@@ -652,11 +654,8 @@ impl Dop853 {
         err.powf(0.125) / SAFETY
     }
 
-    fn step_fell(&self, t: f64, h_tiny: f64) -> String {
-        format!(
-            "dop853: the step fell to {:e} s at t = {t:e}, below the {h_tiny:e} s that t resolves: the solution is not smooth enough there for rtol {:e}, or t is too far from 0 for its time scales",
-            self.h, self.rtol
-        )
+    fn step_fell(&self, t: f64, h_tiny: f64) -> Error {
+        failures::step_fell("dop853", (self.h, t, h_tiny), self.rtol)
     }
 
     /// Hairer's starting step, as dopri5's, for an eighth-order error.
@@ -684,17 +683,19 @@ impl Dop853 {
         t1: f64,
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         let n = ode.dim();
         if n > MAX_DIM || y.len() < n {
-            return Err(format!("dop853: {n} states do not fit (at most {MAX_DIM})"));
+            return Err(failures::states_do_not_fit("dop853", n, MAX_DIM));
         }
         // Written so that NaN fails too.
         let valid = t1 >= t0 && self.rtol > 0.0 && self.h_max > 0.0;
         if !valid {
-            return Err(format!(
-                "dop853: needs t1 >= t0, rtol > 0, h_max > 0; got [{t0}, {t1}], rtol {}, h_max {}",
-                self.rtol, self.h_max
+            return Err(failures::bad_settings(
+                "dop853",
+                (t0, t1),
+                self.rtol,
+                self.h_max,
             ));
         }
         if t1 == t0 {
@@ -720,9 +721,11 @@ impl Dop853 {
         while t < t1 {
             steps += 1;
             if steps > self.max_steps {
-                return Err(format!(
-                    "dop853: more than {} steps between t = {t0} and t = {t1} (stopped at t = {t}); the problem is too stiff for this tolerance",
-                    self.max_steps
+                return Err(failures::too_many_steps(
+                    "dop853",
+                    self.max_steps,
+                    (t0, t1),
+                    t,
                 ));
             }
             let mut h = self.h.min(self.h_max);
@@ -816,7 +819,7 @@ impl Dop853 {
             t = if last && full { t1 } else { t + h_taken };
             y[..n].copy_from_slice(&tr.y_new[..n]);
             if y[..n].iter().any(|v| !v.is_finite()) {
-                return Err(format!("dop853: the state became non-finite at t = {t}"));
+                return Err(failures::not_finite("dop853", t));
             }
             k1 = tr.k[12];
             let far_side = sw_new;
@@ -885,7 +888,7 @@ impl Stepping for Dop853 {
         (t0, t1): (f64, f64),
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         self.integrate_switched(ode, t0, t1, y, work)
     }
 }
@@ -898,7 +901,7 @@ impl Integrator for Dop853 {
         t1: f64,
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         self.integrate_switched(&Smooth(ode), t0, t1, y, work)
     }
 }

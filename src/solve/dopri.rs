@@ -18,11 +18,13 @@ mod ahead;
 
 pub use ahead::{Carry, StepAhead, CARRY_SAVED, SAVED_LEN as STEP_AHEAD_SAVED};
 
+use super::failures;
 use super::narrow::{Narrow, Verdict, Watch};
 use super::stepping::Stepping;
 use super::stiffness::StiffnessTest;
 use super::switching::{crossed, Smooth, Switching, MAX_SWITCHES};
 use super::{Integrator, Ode, Work, MAX_DIM};
+use crate::error::{Error, Failure};
 
 /// The most components a step may integrate with an integrating factor.
 pub const MAX_DECAYING: usize = 2;
@@ -727,7 +729,7 @@ impl Dopri5 {
         t1: f64,
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         self.run(ode, (t0, t1), y, work, Stop::End).map(|_| ())
     }
 
@@ -745,7 +747,7 @@ impl Dopri5 {
         y: &mut [f64],
         work: &mut Work,
         from: Option<(&Carry, &StepAhead)>,
-    ) -> Result<(f64, StepAhead, Carry), String> {
+    ) -> Result<(f64, StepAhead, Carry), Error> {
         let mut slot = None;
         let end = if t1 > t0 {
             let ahead = AheadRun {
@@ -757,8 +759,14 @@ impl Dopri5 {
         } else {
             t0
         };
-        let (step, carry) =
-            slot.ok_or_else(|| format!("dopri5: no step to take ahead in [{t0}, {t1}]"))?;
+        let (step, carry) = slot.ok_or_else(|| {
+            Error::step(
+                "dopri5",
+                Failure::Misuse,
+                format!("no step to take ahead in [{t0}, {t1}]"),
+                "an interval with a step in it",
+            )
+        })?;
         Ok((end, step, carry))
     }
 
@@ -774,7 +782,7 @@ impl Dopri5 {
         y: &mut [f64],
         work: &mut Work,
         largest: &mut f64,
-    ) -> Result<f64, String> {
+    ) -> Result<f64, Error> {
         self.run(ode, (t0, t1), y, work, Stop::Kink(largest))
     }
 
@@ -786,24 +794,29 @@ impl Dopri5 {
         y: &mut [f64],
         work: &mut Work,
         mut stop: Stop,
-    ) -> Result<f64, String> {
+    ) -> Result<f64, Error> {
         let n = ode.dim();
         if n > MAX_DIM || y.len() < n {
-            return Err(format!("dopri5: {n} states do not fit (at most {MAX_DIM})"));
+            return Err(failures::states_do_not_fit("dopri5", n, MAX_DIM));
         }
         let coupled = ode.coupled().min(n);
         // Written so that NaN fails too.
         let valid = t1 >= t0 && self.rtol > 0.0 && self.h_max > 0.0;
         if !valid {
-            return Err(format!(
-                "dopri5: needs t1 >= t0, rtol > 0, h_max > 0; got [{t0}, {t1}], rtol {}, h_max {}",
-                self.rtol, self.h_max
+            return Err(failures::bad_settings(
+                "dopri5",
+                (t0, t1),
+                self.rtol,
+                self.h_max,
             ));
         }
         if matches!(stop, Stop::Kink(_)) && ode.decaying().contains(&0) {
-            return Err(
-                "dopri5: integrate_to_kink reads the extremes of y[0] off the interpolant, which is no polynomial where y[0] decays under the integrating factor".into(),
-            );
+            return Err(Error::step(
+                "dopri5",
+                Failure::Misuse,
+                "integrate_to_kink on a y[0] that decays under the integrating factor",
+                "a y[0] the interpolant holds as a polynomial (its extremes are read off it)",
+            ));
         }
         if t1 == t0 {
             return Ok(t1);
@@ -862,9 +875,11 @@ impl Dopri5 {
         while t < t1 {
             steps += 1;
             if steps > self.max_steps {
-                return Err(format!(
-                    "dopri5: more than {} steps between t = {t0} and t = {t1} (stopped at t = {t}); the problem is too stiff for this tolerance",
-                    self.max_steps
+                return Err(failures::too_many_steps(
+                    "dopri5",
+                    self.max_steps,
+                    (t0, t1),
+                    t,
                 ));
             }
             let mut h = self.h.min(self.h_max);
@@ -1014,7 +1029,7 @@ impl Dopri5 {
             t = if last && full { t1 } else { t + h_taken };
             y[..n].copy_from_slice(&tr.y_new[..n]);
             if y[..n].iter().any(|v| !v.is_finite()) {
-                return Err(format!("dopri5: the state became non-finite at t = {t}"));
+                return Err(failures::not_finite("dopri5", t));
             }
             k1 = tr.last_stage();
             sw_old = if h_taken == h { sw_new } else { sw_kink };
@@ -1118,11 +1133,8 @@ impl Dopri5 {
     }
 
     /// Why the integration stopped when the step fell below the shortest that t resolves.
-    fn step_fell(&self, t: f64, h_tiny: f64) -> String {
-        format!(
-            "dopri5: the step fell to {:e} s at t = {t:e}, below the {h_tiny:e} s that t resolves: the solution is not smooth enough there for rtol {:e}, or t is too far from 0 for its time scales",
-            self.h, self.rtol
-        )
+    fn step_fell(&self, t: f64, h_tiny: f64) -> Error {
+        failures::step_fell("dopri5", (self.h, t, h_tiny), self.rtol)
     }
 
     /// Hairer's starting step: a step whose Euler error would be about the tolerance.
@@ -1165,7 +1177,7 @@ impl Stepping for Dopri5 {
         (t0, t1): (f64, f64),
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         self.integrate_switched(ode, t0, t1, y, work)
     }
 }
@@ -1178,7 +1190,7 @@ impl Integrator for Dopri5 {
         t1: f64,
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         self.integrate_switched(&Smooth(ode), t0, t1, y, work)
     }
 }

@@ -6,6 +6,7 @@
 //! Appl. 26(4)), which is accurate to round-off for every norm.
 
 use super::dense::{lu_factor, lu_solve};
+use crate::error::{Error, Failure};
 
 pub type Matrix<const N: usize> = [[f64; N]; N];
 
@@ -131,10 +132,15 @@ fn balance<const N: usize>(a: &Matrix<N>) -> ([f64; N], Matrix<N>) {
 /// A badly scaled `a` (a motor with a tiny inertia: entries from 1e-13 to 1e15) is balanced
 /// first, `exp(a) = D exp(D^-1 a D) D^-1`: its norm, and with it the number of squarings whose
 /// round-off a non-normal matrix amplifies, can fall by many orders.
-pub fn expm<const N: usize>(a: &Matrix<N>) -> Result<Matrix<N>, String> {
+pub fn expm<const N: usize>(a: &Matrix<N>) -> Result<Matrix<N>, Error> {
     let norm = norm_1(a);
     if !norm.is_finite() {
-        return Err(format!("matrix exponential of a matrix with norm {norm}"));
+        return Err(Error::step(
+            "expm",
+            Failure::NotFinite,
+            format!("a matrix with norm {norm}"),
+            "a finite matrix",
+        ));
     }
     if norm > BALANCE_ABOVE {
         let (d, balanced) = balance(a);
@@ -154,7 +160,7 @@ pub fn expm<const N: usize>(a: &Matrix<N>) -> Result<Matrix<N>, String> {
 
 /// `exp(a)` for `a` of 1-norm `norm`: scaling by a power of 2, Pade(13), squaring.
 #[inline]
-fn expm_unbalanced<const N: usize>(a: &Matrix<N>, norm: f64) -> Result<Matrix<N>, String> {
+fn expm_unbalanced<const N: usize>(a: &Matrix<N>, norm: f64) -> Result<Matrix<N>, Error> {
     let squarings = if norm > THETA_13 {
         (norm / THETA_13).log2().ceil() as i32
     } else {
@@ -187,7 +193,12 @@ fn expm_unbalanced<const N: usize>(a: &Matrix<N>, norm: f64) -> Result<Matrix<N>
     let rhs = combine(&[(2.0, &u)], 0.0);
     let mut pivots = [0; N];
     if !lu_factor(&mut lhs, N, &mut pivots) {
-        return Err("matrix exponential: singular Pade denominator".to_string());
+        return Err(Error::step(
+            "expm",
+            Failure::NotFinite,
+            "a singular Pade denominator",
+            "a matrix whose exponential f64 holds",
+        ));
     }
     let mut r = [[0.0; N]; N];
     for j in 0..N {

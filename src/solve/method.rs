@@ -10,6 +10,7 @@ use super::rk4::Rk4;
 use super::stepping::Stepping;
 use super::switching::Switching;
 use super::{Integrator, Ode, Work};
+use crate::error::Error;
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Method {
@@ -58,7 +59,7 @@ impl Stepping for Method {
         span: (f64, f64),
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         each!(self, s => s.advance(ode, span, y, work))
     }
 }
@@ -71,7 +72,7 @@ impl Integrator for Method {
         t1: f64,
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         each!(self, s => s.integrate(ode, t0, t1, y, work))
     }
 }

@@ -8,6 +8,7 @@ pub mod dense;
 pub mod dop853;
 pub mod dopri;
 pub mod expm;
+pub mod failures;
 pub mod method;
 pub mod narrow;
 pub mod phase;
@@ -21,6 +22,8 @@ pub mod stiffness;
 pub mod switching;
 #[cfg(test)]
 mod test_odes;
+
+use crate::error::{Error, Failure};
 
 /// The largest state vector any simulation integrates (including quadrature states such as the
 /// running integral of a force or of its power).
@@ -70,7 +73,7 @@ pub trait Integrator {
         t1: f64,
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String>;
+    ) -> Result<(), Error>;
 }
 
 /// The most steps (sub-steps of every kind, as counted in [`Work::steps`]) one communication
@@ -87,14 +90,22 @@ pub const MAX_RHS_EVALUATIONS_PER_DO_STEP: u64 = 10_000_000;
 
 /// Errs once `work` has gone past either limit since it stood at `at_start`; `t` is where the
 /// step stopped.
-pub fn within_step_budget(work: &Work, at_start: &Work, t: f64) -> Result<(), String> {
+pub fn within_step_budget(
+    solver: &'static str,
+    work: &Work,
+    at_start: &Work,
+    t: f64,
+) -> Result<(), Error> {
     let steps = work.steps.saturating_sub(at_start.steps);
     let evaluations = work
         .rhs_evaluations
         .saturating_sub(at_start.rhs_evaluations);
     if steps > MAX_STEPS_PER_DO_STEP || evaluations > MAX_RHS_EVALUATIONS_PER_DO_STEP {
-        Err(format!(
-            "more than {MAX_STEPS_PER_DO_STEP} integration steps or {MAX_RHS_EVALUATIONS_PER_DO_STEP} right-hand-side evaluations in one communication step (stopped at t = {t}): use a shorter communication step, or a tolerance or parameters that make the problem less stiff"
+        Err(Error::step(
+            solver,
+            Failure::TooManySteps,
+            format!("more than {MAX_STEPS_PER_DO_STEP} integration steps or {MAX_RHS_EVALUATIONS_PER_DO_STEP} right-hand-side evaluations in one communication step (stopped at t = {t})"),
+            "fewer: a shorter communication step, or a tolerance or parameters that make the problem less stiff",
         ))
     } else {
         Ok(())

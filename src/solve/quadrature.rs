@@ -4,6 +4,7 @@
 //! (scene L's Dahl bristle), where an ODE solver would integrate it as a quadrature state.
 
 use super::Work;
+use crate::error::{Error, Failure};
 
 /// The 15-point Kronrod nodes on [0, 1] (the rule is symmetric); the 7-point Gauss nodes are
 /// those at odd indices (and 0).
@@ -108,7 +109,7 @@ impl GaussKronrod {
         a: f64,
         b: f64,
         work: &mut Work,
-    ) -> Result<f64, String> {
+    ) -> Result<f64, Error> {
         let mut t = a;
         let mut sum = 0.0;
         let mut h = if self.h_next > 0.0 {
@@ -125,9 +126,11 @@ impl GaussKronrod {
             work.rhs_evaluations += PANEL_EVALUATIONS;
             let allowed = self.tol_per_length * step;
             if !error.is_finite() {
-                return Err(format!(
-                    "the integrand became non-finite on [{t}, {}]",
-                    t + step
+                return Err(Error::step(
+                    "quadrature",
+                    Failure::NotFinite,
+                    format!("the integrand became non-finite on [{t}, {}]", t + step),
+                    "a finite integrand",
                 ));
             }
             // The Gauss-Kronrod difference goes as the panel to the 15th power, the estimate
@@ -155,8 +158,11 @@ impl GaussKronrod {
                 h = step * factor;
             }
             if t + h <= t && t < b {
-                return Err(format!(
-                    "the quadrature's panel became too short at t = {t}: the integrand varies faster than the tolerance can follow"
+                return Err(Error::step(
+                    "quadrature",
+                    Failure::StepTooShort,
+                    format!("the panel became too short at t = {t}"),
+                    "an integrand the tolerance can follow: a looser tolerance",
                 ));
             }
         }

@@ -20,10 +20,12 @@
 //! the extra filtered re-evaluation after a rejection.
 
 use super::dense::{lu_factor, lu_solve};
+use super::failures;
 use super::narrow::{Verdict, Watch};
 use super::stepping::Stepping;
 use super::switching::{Switching, MAX_SWITCHES};
 use super::{Integrator, Ode, Work, MAX_DIM};
+use crate::error::{Error, Failure};
 
 const STAGES: usize = 3;
 const N3: usize = STAGES * MAX_DIM;
@@ -560,7 +562,7 @@ impl Stepping for Radau5 {
         (t0, t1): (f64, f64),
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         self.integrate_switched(ode, t0, t1, y, work)
     }
 }
@@ -573,7 +575,7 @@ impl Integrator for Radau5 {
         t1: f64,
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         self.run(ode, None, (t0, t1), y, work, None)
     }
 }
@@ -632,7 +634,7 @@ impl Radau5 {
         t1: f64,
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         self.run(ode, Some(ode), (t0, t1), y, work, None)
     }
 
@@ -645,7 +647,7 @@ impl Radau5 {
         y: &mut [f64],
         work: &mut Work,
         last: &mut StepPolynomial,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         self.run(ode, Some(ode), (t0, t1), y, work, Some(last))
     }
 
@@ -657,17 +659,22 @@ impl Radau5 {
         y: &mut [f64],
         work: &mut Work,
         mut last: Option<&mut StepPolynomial>,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         if let Some(last) = last.as_deref_mut() {
             last.h = 0.0;
         }
         let n = ode.dim();
         if n > MAX_DIM || y.len() < n {
-            return Err(format!("Radau5: {n} states exceed the limit of {MAX_DIM}"));
+            return Err(failures::states_do_not_fit("radau5", n, MAX_DIM));
         }
         let nc = ode.coupled().min(n);
         if t1 < t0 || !(t1 - t0).is_finite() {
-            return Err(format!("Radau5: cannot integrate from t = {t0} to {t1}"));
+            return Err(failures::bad_settings(
+                "radau5",
+                (t0, t1),
+                self.rtol,
+                self.h_max,
+            ));
         }
         if t1 == t0 {
             return Ok(());
@@ -725,18 +732,21 @@ impl Radau5 {
         while t < t1 {
             steps += 1;
             if steps > self.max_steps {
-                return Err(format!(
-                    "Radau5: more than {} steps between t = {t0} and {t1} (stopped at t = {t})",
-                    self.max_steps
+                return Err(failures::too_many_steps(
+                    "radau5",
+                    self.max_steps,
+                    (t0, t1),
+                    t,
                 ));
             }
             let remaining = t1 - t;
             let clamped = h >= remaining || remaining - h < 1e-3 * h;
             let h_try = if clamped { remaining } else { h };
             if !clamped && h_try <= shortest(t) {
-                return Err(format!(
-                    "Radau5: the step fell to {h_try:e} s at t = {t:e}, the shortest that t resolves; the solution changes too fast there for rtol {:e} and atol {:e}: loosen them, or start nearer t = 0",
-                    self.rtol, self.atol
+                return Err(failures::step_fell(
+                    "radau5",
+                    (h_try, t, shortest(t)),
+                    self.rtol,
                 ));
             }
             if !j0_at_t {
@@ -756,8 +766,11 @@ impl Radau5 {
                 simplified || self.solve_stages(tab, ode, n, (t, y, h_try), &mut z, work);
             if !converged {
                 if self.fixed_step {
-                    return Err(format!(
-                        "Radau5: Newton did not converge at t = {t}, step {h_try}"
+                    return Err(Error::step(
+                        "radau5",
+                        Failure::NoConvergence,
+                        format!("Newton did not converge at t = {t} with the fixed step {h_try}"),
+                        "a shorter fixed step",
                     ));
                 }
                 work.rejected += 1;
@@ -889,7 +902,7 @@ impl Radau5 {
             }
             y[..n].copy_from_slice(&y1[..n]);
             if y[..n].iter().any(|x| !x.is_finite()) {
-                return Err(format!("Radau5: the solution became non-finite at t = {t}"));
+                return Err(failures::not_finite("radau5", t));
             }
             sw_old = sw_new;
             count = count_new;

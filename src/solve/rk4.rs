@@ -1,9 +1,11 @@
 //! Classical fourth-order Runge-Kutta with a fixed step: the plain explicit reference method of
 //! the error-against-run-time tables (and the same-integrator checks of scene T).
 
+use super::failures;
 use super::stepping::Stepping;
 use super::switching::Switching;
 use super::{Integrator, Ode, Work, MAX_DIM};
+use crate::error::{Error, Failure};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Rk4 {
@@ -19,26 +21,25 @@ impl Integrator for Rk4 {
         t1: f64,
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         let n = ode.dim();
         if n > MAX_DIM || y.len() < n {
-            return Err(format!("rk4: {n} states do not fit (at most {MAX_DIM})"));
+            return Err(failures::states_do_not_fit("rk4", n, MAX_DIM));
         }
         // Written so that NaN fails too.
         let valid = self.h_max > 0.0 && t1 >= t0;
         if !valid {
-            return Err(format!(
-                "rk4: needs h_max > 0 and t1 >= t0, got h_max = {}, [{t0}, {t1}]",
-                self.h_max
+            return Err(Error::step(
+                "rk4",
+                Failure::Misuse,
+                format!("h_max = {} and the interval [{t0}, {t1}]", self.h_max),
+                "h_max > 0 and t1 >= t0",
             ));
         }
         // A hair of slack so an interval of exactly k steps is not split into k + 1.
         let steps = ((t1 - t0) / self.h_max * (1.0 - 1e-12)).ceil().max(1.0);
         if steps > super::MAX_STEPS_PER_DO_STEP as f64 {
-            return Err(format!(
-                "rk4: {steps} steps of {} s to cover [{t0}, {t1}]",
-                self.h_max
-            ));
+            return Err(failures::too_many_fixed_steps("rk4", steps, self.h_max, t1));
         }
         let h = (t1 - t0) / steps;
         let mut k = [[0.0; MAX_DIM]; 4];
@@ -68,9 +69,7 @@ impl Integrator for Rk4 {
         if y[..n].iter().all(|v| v.is_finite()) {
             Ok(())
         } else {
-            Err(format!(
-                "rk4: the state became non-finite by t = {t1}; the step {h:e} s is too long for this stiffness"
-            ))
+            Err(failures::fixed_step_not_finite("rk4", t1))
         }
     }
 }
@@ -94,7 +93,7 @@ impl Stepping for Rk4 {
         (t0, t1): (f64, f64),
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         self.integrate(ode, t0, t1, y, work)
     }
 }

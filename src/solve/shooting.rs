@@ -10,11 +10,12 @@
 //! Far from the orbit the maps are integrated to a looser tolerance, tightened with the
 //! residual (an inexact Newton method): only the last ones cost what a period of the run does.
 
+use crate::error::Error;
 use nalgebra::{DMatrix, DVector};
 
 /// The one-period map: the state one period after `y`, integrated to the relative tolerance
 /// given (or why it could not be taken).
-pub type PeriodMap<'a> = dyn FnMut(&[f64], f64) -> Result<Vec<f64>, String> + 'a;
+pub type PeriodMap<'a> = dyn FnMut(&[f64], f64) -> Result<Vec<f64>, Error> + 'a;
 
 /// The tolerance of the maps far from the orbit (the Jacobian's differences, the first
 /// iterations): Newton's step there needs a few digits, not the run's tolerance.
@@ -37,6 +38,12 @@ const MAX_ITERATIONS: usize = 12;
 pub struct NoOrbit {
     pub why: String,
     pub nearest: Option<Vec<f64>>,
+}
+
+impl From<Error> for NoOrbit {
+    fn from(error: Error) -> Self {
+        error.to_string().into()
+    }
 }
 
 impl From<String> for NoOrbit {
@@ -71,7 +78,7 @@ pub fn periodic_orbit(
     let coarse = COARSE.max(tolerance);
     let mut residual = |y: &DVector<f64>, accuracy: f64, periods: &mut usize| {
         *periods += 1;
-        let next = map(y.as_slice(), accuracy)?;
+        let next = map(y.as_slice(), accuracy).map_err(|e| e.to_string())?;
         if next.len() != n || next.iter().any(|v| !v.is_finite()) {
             return Err("the one-period map left the finite numbers".into());
         }

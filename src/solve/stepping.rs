@@ -11,6 +11,7 @@
 
 use super::switching::Switching;
 use super::Work;
+use crate::error::Error;
 
 /// How many numbers [`Stepping::save_into`] writes.
 pub const SAVED: usize = 1;
@@ -45,7 +46,7 @@ pub trait Stepping {
         span: (f64, f64),
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String>;
+    ) -> Result<(), Error>;
 
     /// Appends what the solver carries between calls to a saved state: [`SAVED`] numbers.
     fn save_into(&self, out: &mut Vec<f64>) {

@@ -4,6 +4,7 @@
 //! whole model and copies, compares and serialises trivially.
 
 use super::variable::{Kind, ModelTable, Variable};
+use crate::error::Error;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct ValueSet {
@@ -89,34 +90,42 @@ impl ValueSet {
 
 /// Whether `value` may be stored in `var`: finite, within the table's range, a known item.
 /// The error says what was expected, for the FMI logger.
-pub fn check_value(table: &ModelTable, var: &Variable, value: f64) -> Result<(), String> {
+pub fn check_value(table: &ModelTable, var: &Variable, value: f64) -> Result<(), Error> {
+    let name = var.name;
     if !matches!(var.kind, Kind::Real { .. }) && (!value.is_finite() || value.fract() != 0.0) {
-        return Err(format!(
-            "{} = {}: expected a whole number",
-            var.name,
-            number(value)
+        return Err(Error::value_found(
+            name,
+            format!("{name} = {}", number(value)),
+            "a whole number",
         ));
     }
     match var.kind {
         Kind::Real { min, max, unit, .. } => {
             if !value.is_finite() {
-                return Err(format!("{} = {value}: expected a finite number", var.name));
+                return Err(Error::value_found(
+                    name,
+                    format!("{name} = {value}"),
+                    "a finite number",
+                ));
             }
             if value < min || value > max {
-                return Err(format!(
-                    "{} = {} is out of range: expected {} ({})",
-                    var.name,
+                return Err(Error::value(
+                    name,
                     number(value),
-                    range_text(var.name, min, max),
-                    if unit.is_empty() { "no unit" } else { unit }
+                    format!(
+                        "{} ({})",
+                        range_text(name, min, max),
+                        if unit.is_empty() { "no unit" } else { unit }
+                    ),
                 ));
             }
         }
         Kind::Integer { min, max, .. } => {
             if value < f64::from(min) || value > f64::from(max) {
-                return Err(format!(
-                    "{} = {value} is out of range: expected an integer in [{min}, {max}]",
-                    var.name
+                return Err(Error::value(
+                    name,
+                    value,
+                    format!("an integer in [{min}, {max}]"),
                 ));
             }
         }
@@ -128,10 +137,10 @@ pub fn check_value(table: &ModelTable, var: &Variable, value: f64) -> Result<(),
                     .enumerate()
                     .map(|(i, (name, _))| format!("{} = {name}", i + 1))
                     .collect();
-                return Err(format!(
-                    "{} = {value} is not an item of {type_name}: expected one of {}",
-                    var.name,
-                    names.join(", ")
+                return Err(Error::value_found(
+                    name,
+                    format!("{name} = {value} is not an item of {type_name}"),
+                    format!("one of {}", names.join(", ")),
                 ));
             }
         }

@@ -9,6 +9,7 @@
 //! and S read, is `kt z0 h - FC s u0` times the integral of `expm1(-c s x(t))`, taken by
 //! adaptive Gauss-Kronrod quadrature ([`GaussKronrod`]) to the tolerance.
 
+use crate::error::Error;
 use crate::friction::dahl::Dahl;
 use crate::solve::quadrature::GaussKronrod;
 use crate::solve::Work;
@@ -57,7 +58,7 @@ impl ClosedForm {
         (z0, h): (f64, f64),
         with_force_integral: bool,
         work: &mut Work,
-    ) -> Result<Advanced, String> {
+    ) -> Result<Advanced, Error> {
         let Sliding { s, slid } = sliding;
         // A sub-step counts as a step; with the quadrature, each of its panels does instead.
         if s == 0.0 || !with_force_integral {

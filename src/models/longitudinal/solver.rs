@@ -7,7 +7,9 @@
 use super::closed_form::ClosedForm;
 use super::equations::{Bristle, LoadedLaw};
 use super::Law;
+use crate::error::{Error, Failure};
 use crate::models::longitudinal::table::vr;
+use crate::models::require_tolerance;
 use crate::models::switch::{LongitudinalSolver, Switch};
 use crate::solve::dopri::Dopri5;
 use crate::solve::method::Method;
@@ -33,7 +35,7 @@ impl Solver {
         (f, steps_per_period): (f64, u32),
         slip_per_period: f64,
         load_input: bool,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, Error> {
         let name = match LongitudinalSolver::read(values, vr::SOLVER)? {
             LongitudinalSolver::Auto => match law {
                 Law::Coulomb => LongitudinalSolver::ClosedForm,
@@ -52,12 +54,7 @@ impl Solver {
             // The adaptive solvers and closed_form (auto is resolved above).
             _ => {}
         }
-        let rtol = values.real(vr::TOLERANCE);
-        if !(1e-14..=1e-2).contains(&rtol) {
-            return Err(format!(
-                "tolerance = {rtol} is out of range: expected 1e-14 <= tolerance <= 0.01"
-            ));
-        }
+        let rtol = require_tolerance(values, vr::TOLERANCE)?;
         // Absolute tolerances on the scale of each state: the deflection, FC/kt at saturation or
         // the distance slid in a period if that is less (a heavy body on a soft contact never
         // nears saturation, and FC/kt would loosen the control by FC over the forces met), and
@@ -80,13 +77,14 @@ impl Solver {
                     kt * z_scale,
                 ))),
                 Law::Coulomb => Ok(Solver::ClosedForm(ClosedForm::new(rtol, fc, fc))),
-                Law::Dahl(d) => Err(format!(
-                    "solver closed_form with law dahl at alpha = {}: expected alpha = 1 (the bristle is in closed form only there), or solver dopri5 or radau5",
-                    d.alpha
+                Law::Dahl(d) => Err(Error::combination(
+                    format!("solver closed_form with law dahl at alpha = {}", d.alpha),
+                    "alpha = 1 (the bristle is in closed form only there), or solver dopri5 or radau5",
                 )),
-                Law::LuGre(_) => Err(
-                    "solver closed_form with law lugre: expected law dahl (alpha = 1) or coulomb, or solver dopri5 or radau5 for LuGre".into(),
-                ),
+                Law::LuGre(_) => Err(Error::combination(
+                    "solver closed_form with law lugre",
+                    "law dahl (alpha = 1) or coulomb, or solver dopri5 or radau5 for LuGre",
+                )),
             };
         }
         // LuGre's damping force sigma1 z' puts sigma1 (z(T) - z(0)) into a period's force
@@ -108,6 +106,15 @@ impl Solver {
             atol[2] = f64::INFINITY;
             Solver::General(Method::Dopri5(Dopri5::new(rtol, atol, 1.0 / f)))
         })
+    }
+
+    /// The solver's name, as the switch spells it (in its errors).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Solver::Exponential => "exponential",
+            Solver::ClosedForm(_) => "closed_form",
+            Solver::General(m) => m.name(),
+        }
     }
 
     /// Sub-steps on a grid of 1/n period (the adaptive solvers choose their own steps).
@@ -172,7 +179,7 @@ impl Solver {
         t1: f64,
         z: &mut f64,
         work: &mut Work,
-    ) -> Result<(f64, f64), String> {
+    ) -> Result<(f64, f64), Error> {
         let ode = Bristle {
             law,
             velocity,
@@ -182,7 +189,12 @@ impl Solver {
         let mut y = [*z, 0.0, 0.0];
         match self {
             Solver::Exponential | Solver::ClosedForm(_) => {
-                return Err("exponential and closed_form are not ODE solvers".into())
+                return Err(Error::step(
+                    self.name(),
+                    Failure::Misuse,
+                    "an ODE to integrate",
+                    "a general solver (exponential and closed_form are not ODE solvers)",
+                ))
             }
             Solver::General(m) => m.integrate(&ode, t0, t1, &mut y, work)?,
         }

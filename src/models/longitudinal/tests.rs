@@ -1,4 +1,5 @@
 use super::*;
+use crate::error::{Failure, Kind};
 use crate::models::longitudinal::table::{LAW, SOLVER, TABLE};
 
 fn values(law: &str, vc: f64) -> ValueSet {
@@ -254,7 +255,7 @@ fn a_solver_message_says_where_its_time_starts() {
         let mut sim = Longitudinal::new(&v, 0.0).unwrap();
         sim.do_step(1e-5, &v).unwrap();
         v.set(vr::VR_IN, 1e3);
-        let said = sim.do_step(1e-5, &v).unwrap_err();
+        let said = sim.do_step(1e-5, &v).unwrap_err().found;
         assert!(
             said.contains("at t = 0e0")
                 && said.ends_with(
@@ -514,7 +515,7 @@ fn a_barely_deflected_contact_is_not_taken_for_an_unstable_one() {
     assert!(
         refused
             .as_ref()
-            .is_some_and(|e| e.contains("created energy")),
+            .is_some_and(|e| e.failure() == Some(Failure::CreatedEnergy)),
         "rk4 far beyond its stability bound: {refused:?}"
     );
 }
@@ -679,18 +680,16 @@ fn closed_form_refuses_laws_without_a_closed_form() {
         vr::NORMAL_FORCE_SOURCE,
         f64::from(table::NORMAL_FORCE_SOURCE.value_of("input").unwrap()),
     );
-    for (case, v, expected) in [
-        ("lugre", lugre, "expected law dahl"),
-        ("alpha 0.5", power, "expected alpha = 1"),
-        (
-            "normal force input",
-            loaded,
-            "expected normal_force_source = weight",
-        ),
+    for (case, v) in [
+        ("lugre", lugre),
+        ("alpha 0.5", power),
+        ("normal force input", loaded),
     ] {
         let refused = Longitudinal::new(&v, 0.0).err();
         assert!(
-            refused.as_ref().is_some_and(|e| e.contains(expected)),
+            refused
+                .as_ref()
+                .is_some_and(|e| e.kind == Kind::Combination),
             "{case}: {refused:?}"
         );
     }

@@ -2,6 +2,7 @@
 //! the kinks of H, on the linear oscillator and its forcing that the exact core shares
 //! ([`Forced`]).
 
+use crate::error::{Error, Failure};
 use crate::friction::regularized::Regularized;
 use crate::solve::switching::{Switching, MAX_SWITCHES};
 use crate::solve::Ode;
@@ -52,7 +53,7 @@ impl Equations {
     /// then gains energy at every step (the regression test
     /// `rk4_refuses_a_step_the_friction_slope_makes_unstable` in `oscillator/tests.rs` holds
     /// such a case).
-    pub fn require_rk4_stable(&self, h: f64) -> Result<(), String> {
+    pub fn require_rk4_stable(&self, h: f64) -> Result<(), Error> {
         let Forced { m, c, k, .. } = self.plant;
         let slope = self.law.eval(0.0).1.max(0.0);
         let damping = c + slope;
@@ -65,8 +66,11 @@ impl Equations {
         if h * rate <= 3.0 {
             Ok(())
         } else {
-            Err(format!(
-                "rk4: the step {h:e} s is beyond its stability bound 3/{rate:e} s set by m, c, k and the friction slope {slope:e} N.s/m at u' = 0; use more steps_per_period (or the radau5 solver)"
+            Err(Error::step(
+                "rk4",
+                Failure::BeyondStability,
+                format!("the step {h:e} s is beyond its stability bound 3/{rate:e} s set by m, c, k and the friction slope {slope:e} N.s/m at u' = 0"),
+                "a step within it: more steps_per_period (or the radau5 solver)",
             ))
         }
     }

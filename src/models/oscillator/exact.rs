@@ -9,6 +9,7 @@
 //! (asin) for the sine forcing. So events fall anywhere inside a communication step.
 
 use super::Forced;
+use crate::error::{Error, Failure};
 use crate::solve::expm::{expm, mul_vec, Matrix};
 use crate::solve::{within_step_budget, Work};
 use std::f64::consts::{PI, TAU};
@@ -78,7 +79,7 @@ pub struct Switch {
 const EVENTS_PER_GRID: f64 = 50.0;
 
 impl Switch {
-    pub fn new(plant: Forced, (h, hs): (f64, f64), steps_per_period: f64) -> Result<Self, String> {
+    pub fn new(plant: Forced, (h, hs): (f64, f64), steps_per_period: f64) -> Result<Self, Error> {
         let Forced { m, c, k, w, .. } = plant;
         let mut generator = [[0.0; 5]; 5];
         generator[0][1] = 1.0;
@@ -96,8 +97,9 @@ impl Switch {
         }
         let grid = shortest / steps_per_period;
         if !(grid > 0.0 && grid.is_finite()) {
-            return Err(format!(
-                "the exact law cannot resolve a time scale of {shortest} s: check m, c, k and w"
+            return Err(Error::combination(
+                format!("m, c, k and w with a shortest time scale of {shortest} s"),
+                "a time scale the exact law resolves (check m, c, k and w)",
             ));
         }
         let grid_propagator = expm(&scaled(&generator, grid))?;
@@ -172,13 +174,13 @@ impl Switch {
         held: f64,
         mut log: Option<&mut Vec<Event>>,
         (work, at_start): (&mut Work, &Work),
-    ) -> Result<f64, String> {
+    ) -> Result<f64, Error> {
         let mut largest = st.u.abs();
         let budget = 10.0 + EVENTS_PER_GRID * ((t_end - st.t) / self.grid).ceil();
         let mut events = 0.0;
         while st.t < t_end {
             work.steps += 1;
-            within_step_budget(work, at_start, st.t).map_err(|e| self.too_fine(e))?;
+            within_step_budget("exact", work, at_start, st.t).map_err(|e| self.too_fine(e))?;
             let (before, u_before) = (st.mode, st.u);
             match st.mode {
                 Mode::Stuck => self.stuck(st, t_end, held),
@@ -199,9 +201,14 @@ impl Switch {
                     });
                 }
                 if events > budget {
-                    return Err(format!(
-                        "the exact law switched between sticking and sliding {events} times before t = {}: the motion chatters and cannot be resolved",
-                        st.t
+                    return Err(Error::step(
+                        "exact",
+                        Failure::Chatter,
+                        format!(
+                            "the motion switched between sticking and sliding {events} times before t = {}",
+                            st.t
+                        ),
+                        "a motion that does not chatter, which the exact law resolves",
                     ));
                 }
             }
@@ -260,12 +267,15 @@ impl Switch {
         best
     }
 
-    /// The budget's message, with the grid that exhausted it.
-    fn too_fine(&self, budget: String) -> String {
-        format!(
-            "exact: sign changes of u' are looked for every {:.3e} s (the fastest of the forcing, the free oscillation and the decay m/c, over steps_per_period); {budget}",
-            self.grid
-        )
+    /// The budget's error, with the grid that exhausted it.
+    fn too_fine(&self, budget: Error) -> Error {
+        Error {
+            expected: format!(
+                "{}; sign changes of u' are looked for every {:.3e} s (the fastest of the forcing, the free oscillation and the decay m/c, over steps_per_period): fewer steps_per_period",
+                budget.expected, self.grid
+            ),
+            ..budget
+        }
     }
 
     /// A sliding phase in direction s: ends at t_end or where u' returns to 0.
@@ -276,10 +286,10 @@ impl Switch {
         t_end: f64,
         held: f64,
         (work, at_start): (&mut Work, &Work),
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         while st.t < t_end {
             work.steps += 1;
-            within_step_budget(work, at_start, st.t).map_err(|e| self.too_fine(e))?;
+            within_step_budget("exact", work, at_start, st.t).map_err(|e| self.too_fine(e))?;
             let dt = self.grid.min(t_end - st.t);
             let y0 = self.augmented(st.t, st.u, st.v, s, held);
             let propagator = if dt == self.grid {
@@ -304,7 +314,7 @@ impl Switch {
     }
 
     /// `(s u', s u'')` at tau after y0.
-    fn speed(&self, y0: &[f64; 5], s: f64, tau: f64) -> Result<(f64, f64), String> {
+    fn speed(&self, y0: &[f64; 5], s: f64, tau: f64) -> Result<(f64, f64), Error> {
         let y = mul_vec(&expm(&scaled(&self.generator, tau))?, y0);
         Ok((s * y[1], s * self.acceleration(&y)))
     }
@@ -316,7 +326,7 @@ impl Switch {
         y1: &[f64; 5],
         s: f64,
         dt: f64,
-    ) -> Result<Option<f64>, String> {
+    ) -> Result<Option<f64>, Error> {
         let (g0, d0) = (s * y0[1], s * self.acceleration(y0));
         let (g1, d1) = (s * y1[1], s * self.acceleration(y1));
         let (mut lo, mut hi) = (0.0, dt);
@@ -358,7 +368,7 @@ impl Switch {
     }
 
     /// Where s*u' has its minimum in (0, dt), knowing s*u'' < 0 at 0 and > 0 at dt.
-    fn bottom(&self, y0: &[f64; 5], s: f64, dt: f64) -> Result<f64, String> {
+    fn bottom(&self, y0: &[f64; 5], s: f64, dt: f64) -> Result<f64, Error> {
         let (mut lo, mut hi) = (0.0, dt);
         while hi - lo > 4.0 * f64::EPSILON * dt {
             let mid = 0.5 * (lo + hi);
@@ -373,7 +383,7 @@ impl Switch {
 
     /// The zero of s*u' in [lo, hi] (positive at lo, not at hi), by Newton kept inside the
     /// bracket, to round-off.
-    fn root(&self, y0: &[f64; 5], s: f64, mut lo: f64, mut hi: f64) -> Result<f64, String> {
+    fn root(&self, y0: &[f64; 5], s: f64, mut lo: f64, mut hi: f64) -> Result<f64, Error> {
         let mut tau = lo;
         for _ in 0..200 {
             let (g, d) = self.speed(y0, s, tau)?;

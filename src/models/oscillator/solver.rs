@@ -4,6 +4,7 @@
 //! ([`super::linear_phase`]), dopri5 inside it.
 
 use super::Equations;
+use crate::error::Error;
 use crate::models::switch::OscillatorSolver;
 use crate::solve::dopri::Dopri5;
 use crate::solve::method::Method;
@@ -42,6 +43,14 @@ impl Solver {
                 radau.atol_scale[2] = f64::INFINITY;
                 Solver::General(Method::Radau5(radau))
             }
+        }
+    }
+
+    /// The solver's name, as the switch spells it (in its errors).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Solver::General(m) => m.name(),
+            Solver::Piecewise(_) => "piecewise",
         }
     }
 
@@ -87,7 +96,7 @@ impl Solver {
         y: &mut [f64],
         work: &mut Work,
         last: Option<&mut StepPolynomial>,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         match (self, last) {
             (Solver::General(Method::Radau5(r)), Some(last)) => {
                 r.integrate_switched_keeping(equations, (t0, t1), y, work, last)

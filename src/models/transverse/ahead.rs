@@ -10,6 +10,7 @@
 //! whole integral at its end.
 
 use super::{axial, Drive, Equations, Solver, Transverse, Q};
+use crate::error::Error;
 use crate::models::period_mean::PeriodMean;
 use crate::models::ramp::Ramp;
 use crate::solve::dopri::{Carry, StepAhead, CARRY_SAVED, STEP_AHEAD_SAVED};
@@ -123,7 +124,7 @@ impl Transverse {
         &mut self,
         (t, t_end, boundary): (f64, f64, f64),
         behind: Option<Ahead>,
-    ) -> Result<bool, String> {
+    ) -> Result<bool, Error> {
         let Drive::Prescribed(vd) = self.drive else {
             return Ok(false);
         };
@@ -202,9 +203,13 @@ impl Transverse {
     }
 
     /// The step taken ahead from what [`Transverse::save_ahead`] wrote.
-    pub(super) fn restore_ahead(&mut self, saved: &[f64]) -> Result<(), String> {
-        let refused =
-            || "a TransverseFriction state holds a step taken ahead that is not one".to_string();
+    pub(super) fn restore_ahead(&mut self, saved: &[f64]) -> Result<(), Error> {
+        let refused = || {
+            Error::state(
+                "a TransverseFriction state whose step taken ahead is not one",
+                "a step taken ahead this simulation's solver takes, or none",
+            )
+        };
         self.ahead = match saved {
             [flag] if *flag == 0.0 => None,
             [flag, origin, end, rest @ ..]

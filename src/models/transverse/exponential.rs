@@ -26,7 +26,9 @@
 //! h sqrt(kt/m) < 2, i.e. more than 2 steps a period at 3 kHz and the paper's kt, 60 at kt x 1000.
 
 use super::{Params, VX, VY, ZX, ZY};
+use crate::error::{Error, Failure};
 use crate::friction::lugre2d::{direction, SlipLaw};
+use crate::solve::failures;
 use crate::solve::{Ode, Work, MAX_DIM, MAX_STEPS_PER_DO_STEP};
 use nalgebra::Vector2;
 
@@ -49,13 +51,16 @@ impl Exponential {
         t1: f64,
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         let h_max = 1.0 / (eq.p.f * f64::from(self.steps_per_period));
         // A hair of slack so an interval of exactly k steps is not split into k + 1.
         let steps = ((t1 - t0) / h_max * (1.0 - 1e-12)).ceil().max(1.0);
         if steps.is_nan() || steps > MAX_STEPS_PER_DO_STEP as f64 {
-            return Err(format!(
-                "exponential: {steps:.3e} steps of {h_max:e} s to reach t = {t1}: more than {MAX_STEPS_PER_DO_STEP} in one communication step; use a shorter communication step or fewer steps_per_period"
+            return Err(failures::too_many_fixed_steps(
+                "exponential",
+                steps,
+                h_max,
+                t1,
             ));
         }
         let h = (t1 - t0) / steps;
@@ -64,9 +69,14 @@ impl Exponential {
         let omega = eq.p.sticking_frequency();
         if h * omega >= STABLE_H_OMEGA {
             let needed = (omega / (STABLE_H_OMEGA * eq.p.f)).ceil();
-            return Err(format!(
-                "exponential: steps of {h:.3e} s with sqrt((kt + kd)/m) = {omega:.4e} 1/s give h sqrt((kt + kd)/m) = {:.3}, where the explicit step of the body is stable only below {STABLE_H_OMEGA}: expected steps_per_period > {needed:.0} (or a shorter communication step, or the radau5 solver)",
-                h * omega
+            return Err(Error::step(
+                "exponential",
+                Failure::BeyondStability,
+                format!(
+                    "steps of {h:.3e} s with sqrt((kt + kd)/m) = {omega:.4e} 1/s give h sqrt((kt + kd)/m) = {:.3}, where the explicit step of the body is stable only below {STABLE_H_OMEGA}",
+                    h * omega
+                ),
+                format!("steps_per_period > {needed:.0} (or a shorter communication step, or the radau5 solver)"),
             ));
         }
         let mut signs = kinks(eq, t0, y);
@@ -83,9 +93,7 @@ impl Exponential {
         if y.iter().all(|v| v.is_finite()) {
             Ok(())
         } else {
-            Err(format!(
-                "exponential: the state became non-finite by t = {t1}; use more steps_per_period"
-            ))
+            Err(failures::fixed_step_not_finite("exponential", t1))
         }
     }
 }

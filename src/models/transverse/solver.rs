@@ -63,6 +63,15 @@ pub enum Solver {
 }
 
 impl Solver {
+    /// The solver's name, as the switch spells it (in its errors).
+    pub(super) fn name(&self) -> &'static str {
+        match self {
+            Solver::General(m) => m.name(),
+            Solver::TwoPhase(_) => "two_phase",
+            Solver::Exponential(_) => "exponential",
+        }
+    }
+
     /// The relative tolerance of an adaptive solver.
     pub(super) fn rtol(&self) -> Option<f64> {
         match self {

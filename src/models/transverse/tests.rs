@@ -1,4 +1,5 @@
 use super::*;
+use crate::error::Kind;
 use crate::friction::lugre::LuGre;
 use crate::models::transverse::solver::{BAND_POINTS_COARSE, BAND_POINTS_FINE};
 use crate::models::transverse::table::{BODY, INITIAL, SLIP_LAW, SOLVER, TABLE};
@@ -18,29 +19,29 @@ pub(super) fn mean_after(v: &ValueSet, periods: u32) -> f64 {
     mean_from(v, 0.0, periods)
 }
 
-/// Bad parameters are refused with a message naming the variable and the expected range.
+/// Bad parameters are refused naming the variable; the message says what was expected.
 #[test]
-fn bad_parameters_are_refused_with_a_message() {
-    for (vref, value, expect) in [
-        (vr::KT, -1.0, "kt = -1 is out of range: expected kt > 0"),
-        (vr::KT, 0.0, "expected kt > 0"),
-        (vr::ETA, 1.5, "expected 0 <= eta <= 1"),
-        (vr::ETA, -0.1, "expected 0 <= eta <= 1"),
-        (vr::F, 0.0, "expected f > 0"),
-        (vr::M, f64::NAN, "m = NaN"),
-        (
-            vr::VD,
-            f64::NAN,
-            "vd = NaN is out of range: expected a finite number",
-        ),
-        (vr::TOLERANCE, 0.5, "expected 1e-14 <= tolerance"),
+fn bad_parameters_are_refused_naming_the_variable() {
+    for (vref, value, name) in [
+        (vr::KT, -1.0, "kt"),
+        (vr::KT, 0.0, "kt"),
+        (vr::ETA, 1.5, "eta"),
+        (vr::ETA, -0.1, "eta"),
+        (vr::F, 0.0, "f"),
+        (vr::M, f64::NAN, "m"),
+        (vr::VD, f64::NAN, "vd"),
+        (vr::TOLERANCE, 0.5, "tolerance"),
     ] {
         let mut v = values("dopri5", "split");
         v.set(vr::ETA, 0.71);
         v.set(vref, value);
         let err = Transverse::new(&v, 0.0).expect_err("refused");
-        assert!(err.contains(expect), "{err}");
+        assert_eq!(err.kind, Kind::Value { name }, "{err}");
     }
+    let mut v = values("dopri5", "split");
+    v.set(vr::KT, -1.0);
+    let err = Transverse::new(&v, 0.0).expect_err("refused");
+    assert_eq!(err.to_string(), "kt = -1 is out of range: expected kt > 0");
 }
 
 /// Oracle: a body held still while the support vibrates is 1D LuGre at the support's velocity
@@ -633,7 +634,7 @@ fn a_periodic_start_is_steady_from_the_first_period() {
     );
     v.set(vr::DRIVE_SOURCE, 2.0);
     let refused = Transverse::new(&v, 0.0).unwrap_err();
-    assert!(refused.contains("drive_source = prescribed"), "{refused}");
+    assert_eq!(refused.kind, Kind::Combination, "{refused}");
 }
 
 /// A switching function asked for alone (as the kink's root finder asks) is the one the whole

@@ -8,6 +8,8 @@
 //! The mean of FFx sums FFx at the step ends times the step, the integral form of eq. 30.
 
 use super::{Params, Ramp, LAMBDA, Q, VX, VY, W, X, Y, ZX, ZY};
+use crate::error::Error;
+use crate::solve::failures;
 use crate::solve::Work;
 use nalgebra::Vector2;
 
@@ -74,13 +76,14 @@ impl TwoPhase {
         (origin, t0, t1): (f64, f64, f64),
         y: &mut [f64],
         work: &mut Work,
-    ) -> Result<(), String> {
+    ) -> Result<(), Error> {
         let dt = 1.0 / (p.f * f64::from(self.steps_per_period));
         if (t1 - t0) / dt > crate::solve::MAX_STEPS_PER_DO_STEP as f64 {
-            return Err(format!(
-                "two_phase: {:.3e} steps of {dt:e} s to reach t = {t1}: more than {} in one communication step; use a shorter communication step or fewer steps_per_period",
+            return Err(failures::too_many_fixed_steps(
+                "two_phase",
                 (t1 - t0) / dt,
-                crate::solve::MAX_STEPS_PER_DO_STEP
+                dt,
+                t1,
             ));
         }
         // The grid in the equations' time: its origin relative to theirs.
@@ -103,9 +106,7 @@ impl TwoPhase {
         if y.iter().all(|v| v.is_finite()) && self.ff.is_finite() {
             Ok(())
         } else {
-            Err(format!(
-                "two_phase: the state became non-finite by t = {t1}; use more steps_per_period"
-            ))
+            Err(failures::fixed_step_not_finite("two_phase", t1))
         }
     }
 
