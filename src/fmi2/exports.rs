@@ -91,7 +91,7 @@ pub unsafe fn instantiate(
         }
         let (model, guid, variant) = match binary.model_of(guid, location, "fmuGUID") {
             Ok(found) => found,
-            Err(message) => return refuse(message),
+            Err(error) => return refuse(error.to_string()),
         };
         let mut instance = Instance::new(model, guid, &FMI2, Box::new(logger), logging_on != FALSE);
         if let Some(loaded) = variant {

@@ -109,7 +109,7 @@ pub unsafe fn instantiate_co_simulation(
         let path = text(resource_path);
         let (model, guid, variant) = match binary.model_of(token, path, "instantiationToken") {
             Ok(found) => found,
-            Err(message) => return refuse(message),
+            Err(error) => return refuse(error.to_string()),
         };
         let mut instance = Instance::new(model, guid, &FMI3, Box::new(logger), logging_on != FALSE);
         if let Some(loaded) = variant {

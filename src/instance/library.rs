@@ -8,12 +8,13 @@
 //! (one for every variant of its model), any GUID but the one the variant in the resources it
 //! is handed hashes to.
 
+use crate::error::Error;
 use crate::models::{Model, MODELS};
 use crate::variant::registry::{self, Loaded};
 use std::sync::Arc;
 
 /// Finds the variant behind a GUID (see [`registry::for_guid`]).
-pub type Variants = fn(&str, Option<&str>, &'static [Model]) -> Result<Arc<Loaded>, String>;
+pub type Variants = fn(&str, Option<&str>, &'static [Model]) -> Result<Arc<Loaded>, Error>;
 
 /// The models a library carries and which GUIDs it accepts.
 pub struct Binary {
@@ -41,7 +42,7 @@ impl Binary {
         guid: &str,
         resource_location: Option<&str>,
         argument: &str,
-    ) -> Result<(&'static Model, &'static str, Option<Arc<Loaded>>), String> {
+    ) -> Result<(&'static Model, &'static str, Option<Arc<Loaded>>), Error> {
         let binary = self;
         let full: Vec<(&'static Model, &'static str)> = if binary.full_models {
             binary
@@ -59,25 +60,25 @@ impl Binary {
             .iter()
             .map(|(m, g)| format!("{g} ({})", m.table.model_identifier))
             .collect();
-        let this = if known.is_empty() {
-            "this binary is a variant FMU's: expected the GUID of the variant in its resources"
-                .to_string()
+        let expected = if known.is_empty() {
+            "the GUID of the variant in its resources (this binary is a variant FMU's)".to_string()
         } else {
             format!(
-                "expected {} (is the modelDescription.xml from another build, or another FMU's?)",
+                "{} (is the modelDescription.xml from another build, or another FMU's?)",
                 known.join(" or ")
             )
         };
+        let found = format!("{argument} \"{guid}\" matches no model of this binary");
         let Some(variants) = binary.variants else {
-            return Err(format!(
-                "{argument} \"{guid}\" matches no model of this binary: {this}"
-            ));
+            return Err(Error::refused(found, expected));
         };
         variants(guid, resource_location, binary.models)
             // A variant's instance takes its GUID from the file.
             .map(|loaded| (loaded.variant.model, "", Some(loaded)))
-            .map_err(|why| {
-                format!("{argument} \"{guid}\" matches no model of this binary: {this}; {why}")
+            .map_err(|why| Error {
+                found: format!("{found}, nor a variant's: {}", why.found),
+                expected: format!("{expected}; or {}", why.expected),
+                ..why
             })
     }
 }

@@ -2,7 +2,9 @@
 //!
 //! This file is compiled twice: into the library (the FMI layer dispatches value references with
 //! it) and into `build.rs` (which writes modelDescription.xml from it). So it depends on nothing
-//! but `core`, and the two can never disagree.
+//! but `core` and the errors (src/error.rs, compiled into both), and the two can never disagree.
+
+use crate::error::Error;
 
 /// FMI 2.0 causality of a variable.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -123,18 +125,24 @@ pub struct InputSwitch {
 /// of nanoseconds (libcosim's clock counts them), and `start + n step` equal to `stop` in double
 /// precision for a whole n, so a master that computes its points as `start + i step` neither
 /// stops short nor asks for a step past `stop`. Returns n.
-pub fn communication_grid(start: f64, stop: f64, step: f64) -> Result<u64, String> {
+pub fn communication_grid(start: f64, stop: f64, step: f64) -> Result<u64, Error> {
     let nanoseconds = step * 1e9;
     if (nanoseconds - nanoseconds.round()).abs() > 1e-6 || nanoseconds < 0.5 {
-        return Err(format!(
-            "step = {step}: expected a whole number of nanoseconds (co-simulation engines such as libcosim count time in ns)"
+        return Err(Error::value_found(
+            "step",
+            format!("step = {step}"),
+            "a whole number of nanoseconds (co-simulation engines such as libcosim count time in ns)",
         ));
     }
     let n = ((stop - start) / step).round();
     if !(n >= 1.0 && start + n * step == stop) {
-        return Err(format!(
-            "step = {step}: expected stop - start = {} to be a whole number of steps, start + n step = stop in double precision",
-            stop - start
+        return Err(Error::value_found(
+            "step",
+            format!("step = {step}"),
+            format!(
+                "stop - start = {} to be a whole number of steps, start + n step = stop in double precision",
+                stop - start
+            ),
         ));
     }
     Ok(n as u64)

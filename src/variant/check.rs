@@ -2,7 +2,8 @@
 //! checked as a setter would check it. Each message names the file, the key and what was expected.
 
 use super::raw::{Raw, RawExperiment};
-use super::Variant;
+use super::{Refused, Variant};
+use crate::error::Error;
 use crate::model_description::Experiment;
 use crate::models::Model;
 use crate::variables::values::{check_value, ValueSet};
@@ -18,8 +19,8 @@ pub fn variant(
     raw: Raw,
     text: &str,
     models: &'static [Model],
-) -> Result<Variant, String> {
-    let error = |key: &str, message: String| format!("{file}: key `{key}`: {message}");
+) -> Result<Variant, Refused> {
+    let error = |key: &str, error: Error| Refused::at(file, key, error);
     check_name(&raw.name, models).map_err(|m| error("name", m))?;
     // The models with a friction law; DriveTrain has nothing to trim.
     let model = models
@@ -34,10 +35,10 @@ pub fn variant(
             .collect();
         error(
             "model",
-            format!(
-                "unknown model \"{}\": expected one of {}",
-                raw.model,
-                known.join(", ")
+            Error::value_found(
+                "model",
+                format!("unknown model \"{}\"", raw.model),
+                format!("one of {}", known.join(", ")),
             ),
         )
     })?;
@@ -46,8 +47,10 @@ pub fn variant(
         if let Some(c) = description.chars().find(|c| c.is_control()) {
             return Err(error(
                 "description",
-                format!(
-                    "holds the control character {c:?}, which XML cannot carry: expected printable text"
+                Error::value_found(
+                    "description",
+                    format!("the control character {c:?}, which XML cannot carry"),
+                    "printable text",
                 ),
             ));
         }
@@ -63,7 +66,10 @@ pub fn variant(
         let var = table.by_name(parameter).ok_or_else(|| {
             error(
                 key,
-                format!("{} has no {parameter}", table.model_identifier),
+                Error::refused(
+                    format!("{} has no {parameter}", table.model_identifier),
+                    "a model with it",
+                ),
             )
         })?;
         let value = enum_value(table, var, item).map_err(|m| error(key, m))?;
@@ -75,17 +81,22 @@ pub fn variant(
         let var = table.by_name(key).ok_or_else(|| {
             error(
                 &full_key,
-                format!(
-                    "{} has no parameter or input \"{key}\": expected one of {}",
-                    table.model_identifier,
-                    names(table, |v| v.causality != Causality::Output)
+                Error::refused(
+                    format!(
+                        "{} has no parameter or input \"{key}\"",
+                        table.model_identifier
+                    ),
+                    format!(
+                        "one of {}",
+                        names(table, |v| v.causality != Causality::Output)
+                    ),
                 ),
             )
         })?;
         if var.causality == Causality::Output {
             return Err(error(
                 &full_key,
-                format!("{key} is an output: expected a parameter or an input"),
+                Error::refused(format!("{key} is an output"), "a parameter or an input"),
             ));
         }
         if var.name == law_name || var.name == SOLVER_PARAMETER {
@@ -96,7 +107,10 @@ pub fn variant(
             };
             return Err(error(
                 &full_key,
-                format!("{key} is set by the top-level key `{top}`: expected it there"),
+                Error::refused(
+                    format!("{key} is set by the top-level key `{top}`"),
+                    "it there",
+                ),
             ));
         }
         let x = toml_value(table, var, value).map_err(|m| error(&full_key, m))?;
@@ -116,17 +130,16 @@ pub fn variant(
                 .ok_or_else(|| {
                     error(
                         key,
-                        format!(
-                            "\"{name}\" is not {what} of {}: expected one of {}",
-                            table.model_identifier,
-                            names(table, |v| v.causality == causality)
+                        Error::refused(
+                            format!("\"{name}\" is not {what} of {}", table.model_identifier),
+                            format!("one of {}", names(table, |v| v.causality == causality)),
                         ),
                     )
                 })?;
             if kept.contains(&var.value_reference) {
                 return Err(error(
                     key,
-                    format!("\"{name}\" is listed twice: expected each name once"),
+                    Error::refused(format!("\"{name}\" is listed twice"), "each name once"),
                 ));
             }
             kept.push(var.value_reference);
@@ -135,7 +148,7 @@ pub fn variant(
     if raw.outputs.is_empty() {
         return Err(error(
             "outputs",
-            "the list is empty: expected at least one output".into(),
+            Error::refused("the list is empty", "at least one output"),
         ));
     }
 
@@ -161,8 +174,9 @@ pub fn variant(
             };
             return Err(error(
                 "inputs",
-                format!(
-                    "{why}, but the simulation hides it: expected inputs to include \"{input}\""
+                Error::combination(
+                    format!("{why}, but the simulation hides it"),
+                    format!("inputs to include \"{input}\""),
                 ),
             ));
         }
@@ -181,9 +195,15 @@ pub fn variant(
             Some(stated) if stated != used => {
                 return Err(error(
                     "experiment.tolerance",
-                    format!(
-                        "tolerance = {stated:e}, but the solver integrates to {} = {used:e}: expected the same value, or no experiment.tolerance (it then states {})",
-                        var.name, var.name
+                    Error::combination(
+                        format!(
+                            "tolerance = {stated:e}, but the solver integrates to {} = {used:e}",
+                            var.name
+                        ),
+                        format!(
+                            "the same value, or no experiment.tolerance (it then states {})",
+                            var.name
+                        ),
                     ),
                 ))
             }
@@ -263,13 +283,16 @@ const WINDOWS_DEVICES: &[&str] = &[
 /// that is no keyword, not reserved to C implementations (a leading _), not an FMI function's
 /// (fmi2..., fmi3...), no Windows device, and no full model's in any letter case (the files
 /// would overwrite each other on a case-insensitive file system).
-fn check_name(name: &str, models: &[Model]) -> Result<(), String> {
+fn check_name(name: &str, models: &[Model]) -> Result<(), Error> {
+    let refused = |found: String| Error::value_found("name", found, "another name");
     let mut chars = name.chars();
     let valid = chars.next().is_some_and(|c| c.is_ascii_alphabetic())
         && chars.all(|c| c.is_ascii_alphanumeric() || c == '_');
     if !valid {
-        return Err(format!(
-            "\"{name}\" is not a valid modelIdentifier: expected a letter followed by letters, digits or _"
+        return Err(Error::value_found(
+            "name",
+            format!("\"{name}\" is not a valid modelIdentifier"),
+            "a letter followed by letters, digits or _",
         ));
     }
     let lower = name.to_ascii_lowercase();
@@ -283,16 +306,16 @@ fn check_name(name: &str, models: &[Model]) -> Result<(), String> {
         None
     };
     if let Some(why) = reserved {
-        return Err(format!("\"{name}\" is {why}: expected another name"));
+        return Err(refused(format!("\"{name}\" is {why}")));
     }
     if let Some(model) = models
         .iter()
         .find(|m| m.table.model_identifier.eq_ignore_ascii_case(name))
     {
-        return Err(format!(
-            "\"{name}\" is the name of the full model {} up to letter case, and the files would collide on a case-insensitive file system: expected another name",
+        return Err(refused(format!(
+            "\"{name}\" is the name of the full model {} up to letter case, and the files would collide on a case-insensitive file system",
             model.table.model_identifier
-        ));
+        )));
     }
     Ok(())
 }
@@ -308,57 +331,52 @@ fn names(table: &ModelTable, filter: impl Fn(&Variable) -> bool) -> String {
 }
 
 /// An enumeration's item by name, through the model's EnumType.
-fn enum_value(table: &ModelTable, var: &Variable, item: &str) -> Result<f64, String> {
+fn enum_value(table: &ModelTable, var: &Variable, item: &str) -> Result<f64, Error> {
     let Kind::Switch { type_name, .. } = var.kind else {
-        return Err(format!("{} is not an enumeration", var.name));
+        return Err(Error::refused(
+            format!("{} is not an enumeration", var.name),
+            "an enumeration",
+        ));
     };
-    let enum_type = table
-        .enum_type(type_name)
-        .ok_or_else(|| format!("{} has no type {type_name}", table.model_identifier))?;
+    let enum_type = table.enum_type(type_name).ok_or_else(|| {
+        Error::refused(
+            format!("{} has no type {type_name}", table.model_identifier),
+            "the type in the table",
+        )
+    })?;
     enum_type.value_of(item).map(f64::from).ok_or_else(|| {
         let items: Vec<&str> = enum_type.items.iter().map(|(name, _)| *name).collect();
-        format!(
-            "\"{item}\" is not an item of {type_name} ({}): expected one of {}",
+        Error::value_found(
             var.name,
-            items.join(", ")
+            format!("\"{item}\" is not an item of {type_name} ({})", var.name),
+            format!("one of {}", items.join(", ")),
         )
     })
 }
 
 /// A TOML value for a variable, checked against the table's range.
-fn toml_value(table: &ModelTable, var: &Variable, value: &toml::Value) -> Result<f64, String> {
+fn toml_value(table: &ModelTable, var: &Variable, value: &toml::Value) -> Result<f64, Error> {
+    let wrong = |expected: &str| {
+        Error::value_found(
+            var.name,
+            format!("{} = {}", var.name, shown(value)),
+            expected,
+        )
+    };
     let x = match (var.kind, value) {
         (Kind::Real { .. }, toml::Value::Float(x)) => *x,
         (Kind::Real { .. }, toml::Value::Integer(n)) => *n as f64,
-        (Kind::Real { .. }, _) => {
-            return Err(format!(
-                "{} = {}: expected a number",
-                var.name,
-                shown(value)
-            ))
-        }
+        (Kind::Real { .. }, _) => return Err(wrong("a number")),
         (Kind::Integer { .. }, toml::Value::Integer(n)) => *n as f64,
-        (Kind::Integer { .. }, _) => {
-            return Err(format!(
-                "{} = {}: expected an integer",
-                var.name,
-                shown(value)
-            ))
-        }
+        (Kind::Integer { .. }, _) => return Err(wrong("an integer")),
         (Kind::Switch { .. }, toml::Value::String(item)) => enum_value(table, var, item)?,
-        (Kind::Switch { .. }, _) => {
-            return Err(format!(
-                "{} = {}: expected an item name in quotes",
-                var.name,
-                shown(value)
-            ))
-        }
+        (Kind::Switch { .. }, _) => return Err(wrong("an item name in quotes")),
     };
     check_value(table, var, x)?;
     Ok(x)
 }
 
-fn experiment(raw: &RawExperiment) -> Result<Experiment, (&'static str, String)> {
+fn experiment(raw: &RawExperiment) -> Result<Experiment, (&'static str, Error)> {
     let RawExperiment {
         start,
         stop,
@@ -368,30 +386,39 @@ fn experiment(raw: &RawExperiment) -> Result<Experiment, (&'static str, String)>
     if !start.is_finite() {
         return Err((
             "experiment.start",
-            format!("start = {start}: expected a finite time"),
+            Error::value_found("start", format!("start = {start}"), "a finite time"),
         ));
     }
     if !(stop.is_finite() && stop > start) {
         return Err((
             "experiment.stop",
-            format!("stop = {stop}: expected a finite time > start = {start}"),
+            Error::value_found(
+                "stop",
+                format!("stop = {stop}"),
+                format!("a finite time > start = {start}"),
+            ),
         ));
     }
     if !(step.is_finite() && step > 0.0 && step <= stop - start) {
         return Err((
             "experiment.step",
-            format!(
-                "step = {step}: expected 0 < step <= stop - start = {}",
-                stop - start
+            Error::value_found(
+                "step",
+                format!("step = {step}"),
+                format!("0 < step <= stop - start = {}", stop - start),
             ),
         ));
     }
-    communication_grid(start, stop, step).map_err(|message| ("experiment.step", message))?;
+    communication_grid(start, stop, step).map_err(|e| ("experiment.step", e))?;
     if let Some(tolerance) = tolerance {
         if !(tolerance.is_finite() && tolerance > 0.0) {
             return Err((
                 "experiment.tolerance",
-                format!("tolerance = {tolerance}: expected a finite tolerance > 0"),
+                Error::value_found(
+                    "tolerance",
+                    format!("tolerance = {tolerance}"),
+                    "a finite tolerance > 0",
+                ),
             ));
         }
     }

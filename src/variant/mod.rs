@@ -29,12 +29,15 @@
 mod check;
 mod description;
 mod raw;
+pub mod refused;
 pub mod registry;
 pub mod uri;
 
+use crate::error::Error;
 use crate::model_description::Experiment;
 use crate::models::Model;
 use crate::variables::values::ValueSet;
+pub use refused::Refused;
 use std::path::Path;
 
 /// Where a variant's FMU carries the file, under resources/.
@@ -57,7 +60,7 @@ pub struct Variant {
 }
 
 /// Parses and checks a variant's text; `file` names it in the messages.
-pub fn parse(file: &str, text: &str) -> Result<Variant, String> {
+pub fn parse(file: &str, text: &str) -> Result<Variant, Refused> {
     parse_for(file, text, crate::models::MODELS)
 }
 
@@ -68,17 +71,29 @@ pub fn trimmable(model_identifier: &str) -> bool {
 }
 
 /// Parses and checks a variant of one of `models` (an FMU's library knows only its own).
-pub fn parse_for(file: &str, text: &str, models: &'static [Model]) -> Result<Variant, String> {
+pub fn parse_for(file: &str, text: &str, models: &'static [Model]) -> Result<Variant, Refused> {
     let raw = raw::parse(file, text)?;
     check::variant(file, raw, text, models)
 }
 
 /// Reads, parses and checks a variant.
-pub fn read(path: &Path) -> Result<Variant, String> {
+pub fn read(path: &Path) -> Result<Variant, Refused> {
     let file = path.display().to_string();
-    let text =
-        std::fs::read_to_string(path).map_err(|e| format!("{file}: cannot read the file: {e}"))?;
+    let text = read_text(path, &file)?;
     parse(&file, &text)
+}
+
+/// The text of the variant file at `path` (named `file` in the refusal).
+fn read_text(path: &Path, file: &str) -> Result<String, Refused> {
+    std::fs::read_to_string(path).map_err(|e| {
+        Refused::file(
+            file,
+            Error::refused(
+                format!("cannot read the file: {e}"),
+                "a readable variant file",
+            ),
+        )
+    })
 }
 
 #[cfg(test)]

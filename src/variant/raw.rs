@@ -1,5 +1,7 @@
 //! The variant as TOML gives it: keys and types, no meaning yet. Unknown keys are refused.
 
+use super::Refused;
+use crate::error::Error;
 use serde::Deserialize;
 
 #[derive(Debug, Deserialize)]
@@ -30,19 +32,23 @@ pub struct RawExperiment {
 }
 
 /// Deserialises, turning TOML's message into one line naming the file and the offending line.
-pub fn parse(file: &str, text: &str) -> Result<Raw, String> {
+pub fn parse(file: &str, text: &str) -> Result<Raw, Refused> {
     toml::from_str(text).map_err(|e: toml::de::Error| {
         let message = e.message().trim_end();
         // A missing key is reported with the span of the table it is missing from, from the
         // file's start for a top-level key: no line to point at then.
         let whole = message.starts_with("missing") && e.span().is_some_and(|s| s.start == 0);
-        match e.span().and_then(|span| text.get(..span.start)) {
+        let found = match e.span().and_then(|span| text.get(..span.start)) {
             Some(before) if !whole && !text.is_empty() && before.len() < text.len() => {
                 let line = before.matches('\n').count() + 1;
                 let content = text.lines().nth(line - 1).unwrap_or("").trim();
-                format!("{file}, line {line} (`{content}`): {message}")
+                format!("line {line} (`{content}`): {message}")
             }
-            _ => format!("{file}: {message}"),
-        }
+            _ => message.to_string(),
+        };
+        Refused::file(
+            file,
+            Error::refused(found, "TOML with a variant's keys, each of its type"),
+        )
     })
 }

@@ -3,7 +3,8 @@
 //! once; the last instance to go frees it, so a process that loads ever other files (or the same
 //! file edited) holds only what its live instances use.
 
-use super::Variant;
+use super::{Refused, Variant};
+use crate::error::Error;
 use crate::models::{Model, Scope};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, MutexGuard, Weak};
@@ -29,10 +30,9 @@ fn loaded() -> MutexGuard<'static, Vec<Entry>> {
 }
 
 /// The variant at `path`, parsed unless a live instance already uses this (path, content).
-pub fn load(path: &Path, models: &'static [Model]) -> Result<Arc<Loaded>, String> {
+pub fn load(path: &Path, models: &'static [Model]) -> Result<Arc<Loaded>, Refused> {
     let file = path.display().to_string();
-    let text =
-        std::fs::read_to_string(path).map_err(|e| format!("{file}: cannot read the file: {e}"))?;
+    let text = super::read_text(path, &file)?;
     let mut entries = loaded();
     let live = entries
         .iter()
@@ -80,25 +80,30 @@ pub fn for_guid(
     guid: &str,
     resource_location: Option<&str>,
     models: &'static [Model],
-) -> Result<Arc<Loaded>, String> {
+) -> Result<Arc<Loaded>, Error> {
     let location = resource_location.filter(|l| !l.is_empty()).ok_or_else(|| {
-        "fmuResourceLocation is NULL or empty, so no resources/variant.toml of a variant FMU can confirm it".to_string()
+        Error::value_found(
+            "fmuResourceLocation",
+            "fmuResourceLocation is NULL or empty, so no resources/variant.toml of a variant FMU can confirm it",
+            "the location of the FMU's resources",
+        )
     })?;
-    let path = super::uri::file_path(location)
-        .map_err(|e| format!("fmuResourceLocation {e}"))?
-        .join(super::RESOURCE);
+    let path = super::uri::file_path(location)?.join(super::RESOURCE);
     if !path.is_file() {
-        return Err(format!(
-            "there is no variant {}: expected a full model's GUID or a variant FMU's resources/variant.toml",
-            path.display()
+        return Err(Error::refused(
+            format!("there is no variant {}", path.display()),
+            "a full model's GUID or a variant FMU's resources/variant.toml",
         ));
     }
     let loaded = load(&path, models)?;
     if loaded.guid != guid {
-        return Err(format!(
-            "{} describes an interface with GUID {}, not this one: expected the variant the FMU was packed with (was it edited after packing?)",
-            path.display(),
-            loaded.guid
+        return Err(Error::combination(
+            format!(
+                "{} describes an interface with GUID {}, not this one",
+                path.display(),
+                loaded.guid
+            ),
+            "the variant the FMU was packed with (was it edited after packing?)",
         ));
     }
     Ok(loaded)
@@ -107,6 +112,7 @@ pub fn for_guid(
 #[cfg(test)]
 mod tests {
     use super::{for_guid, held, load, release_unused};
+    use crate::error::Kind;
     use crate::models::MODELS;
     use std::sync::Arc;
 
@@ -132,23 +138,22 @@ mod tests {
         assert_eq!(first.variant.name, "Cached");
         assert!(first.scope.fixes(crate::models::oscillator::table::vr::P));
 
+        // Another GUID, and the file edited after packing: the file and the GUID disagree.
         let wrong = for_guid("{0}", Some(&uri), MODELS).err().unwrap();
-        assert!(
-            wrong.contains(&format!("describes an interface with GUID {guid}")),
-            "{wrong}"
-        );
+        assert_eq!(wrong.kind, Kind::Combination, "{wrong}");
         std::fs::write(&file, VARIANT.replace("stop = 1", "stop = 2")).unwrap();
         let edited = for_guid(&guid, Some(&uri), MODELS).err().unwrap();
-        assert!(edited.contains("was it edited after packing?"), "{edited}");
-        assert!(for_guid(&guid, None, MODELS)
-            .err()
-            .unwrap()
-            .contains("NULL or empty"));
+        assert_eq!(edited.kind, Kind::Combination, "{edited}");
+        let nowhere = for_guid(&guid, None, MODELS).err().unwrap();
+        assert_eq!(
+            nowhere.kind,
+            Kind::Value {
+                name: "fmuResourceLocation"
+            }
+        );
         std::fs::remove_file(&file).unwrap();
-        assert!(for_guid(&guid, Some(&uri), MODELS)
-            .err()
-            .unwrap()
-            .contains("there is no variant"));
+        let missing = for_guid(&guid, Some(&uri), MODELS).err().unwrap();
+        assert_eq!(missing.kind, Kind::Refused, "{missing}");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

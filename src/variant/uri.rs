@@ -1,11 +1,19 @@
 //! fmuResourceLocation (a file: URI) to a path.
 
+use crate::error::Error;
 use std::path::PathBuf;
 
 /// `file:///a/b%20c`, `file:/a/b` or `file://localhost/a/b` to `/a/b c`; Windows drive paths
 /// (`file:///C:/x`) lose the slash before the drive; a plain absolute path (`/a/b`, `C:\x`)
 /// stays as it is.
-pub fn file_path(uri: &str) -> Result<PathBuf, String> {
+pub fn file_path(uri: &str) -> Result<PathBuf, Error> {
+    let refused = |found: String, expected: &str| {
+        Error::value_found(
+            "fmuResourceLocation",
+            format!("fmuResourceLocation {found}"),
+            expected,
+        )
+    };
     // Some importers pass a plain absolute path, as FMI 1.0's fmuLocation could be, and FMI
     // 3.0's resourcePath is one (`C:\x\` on Windows): take it.
     let drive = uri
@@ -21,13 +29,14 @@ pub fn file_path(uri: &str) -> Result<PathBuf, String> {
         .get(..5)
         .filter(|scheme| scheme.eq_ignore_ascii_case("file:"))
         .map(|_| &uri[5..])
-        .ok_or_else(|| format!("\"{uri}\" is not a file: URI: expected file:///..."))?;
+        .ok_or_else(|| refused(format!("\"{uri}\" is not a file: URI"), "file:///..."))?;
     let rest = if let Some(authority) = rest.strip_prefix("//") {
         let slash = authority.find('/').unwrap_or(authority.len());
         let host = &authority[..slash];
         if !host.is_empty() && !host.eq_ignore_ascii_case("localhost") {
-            return Err(format!(
-                "\"{uri}\" names the host \"{host}\": expected a local file: URI"
+            return Err(refused(
+                format!("\"{uri}\" names the host \"{host}\""),
+                "a local file: URI",
             ));
         }
         &authority[slash..]
@@ -35,7 +44,10 @@ pub fn file_path(uri: &str) -> Result<PathBuf, String> {
         rest
     };
     let decoded = percent_decode(rest).ok_or_else(|| {
-        format!("\"{uri}\" has a bad %-escape: expected % followed by two hex digits, in UTF-8")
+        refused(
+            format!("\"{uri}\" has a bad %-escape"),
+            "% followed by two hex digits, in UTF-8",
+        )
     })?;
     let bytes = decoded.as_bytes();
     let path = if bytes.len() >= 3 && bytes[0] == b'/' && bytes[2] == b':' {
@@ -44,7 +56,7 @@ pub fn file_path(uri: &str) -> Result<PathBuf, String> {
         decoded
     };
     if path.is_empty() {
-        return Err(format!("\"{uri}\" has no path: expected file:///..."));
+        return Err(refused(format!("\"{uri}\" has no path"), "file:///..."));
     }
     Ok(PathBuf::from(path))
 }
@@ -69,12 +81,16 @@ fn percent_decode(text: &str) -> Option<String> {
 #[cfg(test)]
 mod tests {
     use super::file_path;
+    use crate::error::Kind;
     use std::path::PathBuf;
 
     /// Oracle: RFC 8089's forms of a local file URI.
     #[test]
     fn file_uris_become_paths() {
-        let p = |s: &str| file_path(s).map_err(|e| e.to_string());
+        let p = |s: &str| file_path(s).map_err(|e| e.kind);
+        let refused = Err(Kind::Value {
+            name: "fmuResourceLocation",
+        });
         assert_eq!(
             p("file:///tmp/a%20b/res"),
             Ok(PathBuf::from("/tmp/a b/res"))
@@ -87,11 +103,11 @@ mod tests {
         assert_eq!(p("FILE:///tmp/x"), Ok(PathBuf::from("/tmp/x")));
         assert_eq!(p("File:/tmp/x"), Ok(PathBuf::from("/tmp/x")));
         assert_eq!(p("file://LocalHost/tmp/x"), Ok(PathBuf::from("/tmp/x")));
-        assert!(p("filex:///tmp/x").unwrap_err().contains("not a file: URI"));
-        assert!(p("http://x/y").unwrap_err().contains("not a file: URI"));
-        assert!(p("tmp/x").unwrap_err().contains("not a file: URI"));
-        assert!(p("file://server/share").unwrap_err().contains("host"));
-        assert!(p("file:///a%2").unwrap_err().contains("%-escape"));
-        assert!(p("file:///a%zz").unwrap_err().contains("%-escape"));
+        assert_eq!(p("filex:///tmp/x"), refused);
+        assert_eq!(p("http://x/y"), refused);
+        assert_eq!(p("tmp/x"), refused);
+        assert_eq!(p("file://server/share"), refused);
+        assert_eq!(p("file:///a%2"), refused);
+        assert_eq!(p("file:///a%zz"), refused);
     }
 }
