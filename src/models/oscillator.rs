@@ -803,6 +803,24 @@ impl Simulation for Oscillator {
         self.step_logged(h, held, None)
     }
 
+    /// Answers a call of `h` that ends inside the step taken ahead, short of its end, as
+    /// [`Oscillator::step_logged`] would (true): it reads the step's polynomial and cannot fail.
+    /// Steps are taken ahead only under a prescribed force, so the input force is not read.
+    fn read_inside(&mut self, h: f64) -> bool {
+        let t_end = self.state.t + h;
+        match self.ahead {
+            Some(ahead)
+                if h > 0.0
+                    && CallEnd::of(t_end, ahead.end[0], self.amplitude.slack(t_end))
+                        == CallEnd::Inside =>
+            {
+                self.read_step(&ahead.step, t_end);
+                true
+            }
+            _ => false,
+        }
+    }
+
     fn write_outputs(&self, values: &mut ValueSet) {
         // Direct feedthrough: a and H at t follow the input force set at t.
         let held = values.real(vr::P_IN);

@@ -607,6 +607,27 @@ fn a_periodic_start_without_a_spring_says_so_and_runs_the_transient() {
     }
 }
 
+/// A call that ends inside a step taken ahead is answered by `read_inside` (which the FMU asks
+/// first, saving no rollback for it) exactly as by `do_step`: the same state to the bit, and
+/// most short calls answered so.
+#[test]
+fn read_inside_answers_as_a_step_would() {
+    let v = values("trigonometric");
+    let mut stepped = Oscillator::new(&v, 0.0).unwrap();
+    let mut read = Oscillator::new(&v, 0.0).unwrap();
+    let mut answered = 0;
+    for _ in 0..20_000 {
+        stepped.do_step(1e-4, &v).unwrap();
+        if read.read_inside(1e-4) {
+            answered += 1;
+        } else {
+            read.do_step(1e-4, &v).unwrap();
+        }
+        assert_eq!(read.save(), stepped.save());
+    }
+    assert!(answered > 15_000, "{answered} of 20000 calls read inside");
+}
+
 /// Communication steps far shorter than radau5's: the calls that end inside a step taken ahead
 /// read its polynomial, so a hundred calls of 1e-4 s cost about one step, and every point read
 /// that way is within the tolerance of a run at rtol 1e-12 (calling every 0.1 s), as a run at
