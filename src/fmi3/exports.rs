@@ -883,12 +883,18 @@ pub unsafe extern "C" fn fmi3DoStep(
     last_successful_time: *mut f64,
 ) -> Status {
     let update = updates::of(c as usize);
+    let outputs = (
+        event_handling_needed,
+        terminate_simulation,
+        early_return,
+        last_successful_time,
+    );
     let status = with_instance(c, |instance| {
         instance.trace(|| {
             format!("fmi3DoStep(t = {current_communication_point}, h = {communication_step_size})")
         });
-        let outputs = [event_handling_needed, terminate_simulation, early_return];
-        if outputs.iter().any(|p| p.is_null()) || last_successful_time.is_null() {
+        let flags = [event_handling_needed, terminate_simulation, early_return];
+        if flags.iter().any(|p| p.is_null()) || last_successful_time.is_null() {
             return instance.null_argument(
                 Call::DoStep,
                 "eventHandlingNeeded, terminateSimulation, earlyReturn or lastSuccessfulTime",
@@ -897,32 +903,44 @@ pub unsafe extern "C" fn fmi3DoStep(
         if update.is_some() {
             instance.begin_step_with_updates(current_communication_point, communication_step_size)
         } else {
-            instance.do_step(current_communication_point, communication_step_size)
+            let status = instance.do_step(current_communication_point, communication_step_size);
+            write_step_outcome(instance, outputs);
+            status
         }
     });
-    let status = match update {
-        Some((callback, environment)) if status == Status::Ok => {
-            internal_steps(c, callback, environment)
-        }
-        _ => status,
+    let Some((callback, environment)) = update else {
+        return status;
     };
-    // Written where the pointers were checked: the instance exists and took the call.
+    let status = if status == Status::Ok {
+        internal_steps(c, callback, environment)
+    } else {
+        status
+    };
+    // After the internal steps, in a second look-up: the callback may not run under a borrow.
     let _ = with_instance(c, |instance| {
-        let (Some(event), Some(terminate), Some(early), Some(last)) = (
-            event_handling_needed.as_mut(),
-            terminate_simulation.as_mut(),
-            early_return.as_mut(),
-            last_successful_time.as_mut(),
-        ) else {
-            return Status::Error;
-        };
+        write_step_outcome(instance, outputs);
+        Status::Ok
+    });
+    status
+}
+
+/// Writes fmi3DoStep's out-arguments where they are not NULL (the call refuses NULL ones before
+/// it steps): no event, no termination, no early return, and the instance's lastSuccessfulTime.
+unsafe fn write_step_outcome(
+    instance: &Instance,
+    (event, terminate, early, last): (*mut Boolean, *mut Boolean, *mut Boolean, *mut f64),
+) {
+    if let (Some(event), Some(terminate), Some(early), Some(last)) = (
+        event.as_mut(),
+        terminate.as_mut(),
+        early.as_mut(),
+        last.as_mut(),
+    ) {
         *event = FALSE;
         *terminate = FALSE;
         *early = FALSE;
         *last = instance.last_successful_time();
-        Status::Ok
-    });
-    status
+    }
 }
 
 /// Takes the step begun on `c` one internal step at a time, calling `callback` between them
