@@ -24,7 +24,7 @@ pub mod stability;
 pub mod table;
 mod two_phase;
 
-pub use equations::{tolerance_scales, Equations, Params};
+pub use equations::{tolerance_scales, Clocked, Equations, Params};
 pub use solver::Solver;
 
 use equations::{band_coordinate, kink_switches, BAND};
@@ -40,7 +40,6 @@ use super::{
 use crate::error::{Error, Failure};
 use crate::friction::lugre2d::{LuGre2d, SlipLaw};
 use crate::models::transverse::table::vr;
-use crate::solve::phase::turns;
 use crate::solve::rk4::Rk4;
 use crate::solve::shooting::{self, NoOrbit};
 use crate::solve::stepping::Stepping;
@@ -77,7 +76,8 @@ pub enum Drive {
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Transverse {
-    pub p: Params,
+    /// The parameters, on the clock of the simulation's current time.
+    pub p: Clocked,
     pub drive: Drive,
     pub solver: Solver,
     /// The points inside the Stribeck band where the solver ends steps ([`solver::band_points`]).
@@ -283,18 +283,20 @@ impl Transverse {
             switch::SlipLaw::Split => SlipLaw::Split,
         };
         let held = switch::Body::read(values, vr::BODY)? == switch::Body::Held;
-        let p = Params {
-            law,
-            slip,
-            m,
-            kd,
-            hd,
-            eta,
-            va,
-            f,
-            held,
-            phase0: turns(start_time, f),
-        };
+        let p = Clocked::at(
+            Params {
+                law,
+                slip,
+                m,
+                kd,
+                hd,
+                eta,
+                va,
+                f,
+                held,
+            },
+            start_time,
+        );
         let drive = match DriveSource::read(values, vr::DRIVE_SOURCE)? {
             DriveSource::Input => Drive::Input,
             DriveSource::Prescribed => Drive::Prescribed(vd),

@@ -6,7 +6,7 @@ use friction_fmu::friction::regularized::Regularized;
 use friction_fmu::models::oscillator::{Equations, Forced};
 use friction_fmu::models::transverse::table::{vr, TABLE};
 use friction_fmu::models::transverse::{
-    tolerance_scales, Params, Transverse, COUPLED, DIM, LAMBDA, Q, VX, VY, W, X, Y, ZX, ZY,
+    tolerance_scales, Clocked, Transverse, COUPLED, DIM, LAMBDA, Q, VX, VY, W, X, Y, ZX, ZY,
 };
 use friction_fmu::models::Simulation;
 use friction_fmu::solve::switching::{Switching, MAX_SWITCHES};
@@ -90,10 +90,10 @@ pub fn oscillator(d: f64) -> Case {
 }
 
 /// Scene T's ODE (paper T, continuous-time limit) for a prescribed drive velocity `vd`,
-/// built on the simulation's public `Params::contact` and `Params::drive_force`; the simulation's
+/// built on the simulation's public `Clocked::contact` and `Params::drive_force`; the simulation's
 /// own `Equations` is private, so it is restated here and checked against the simulation in `main`.
 pub struct TransverseOde {
-    pub p: Params,
+    pub p: Clocked,
     pub vd: f64,
 }
 

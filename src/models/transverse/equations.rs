@@ -80,13 +80,40 @@ pub struct Params {
     pub f: f64,
     /// Body held at x = y = 0 (Fig. 4b).
     pub held: bool,
-    /// The support's phase, in turns, at the simulation's current time. The equations run on the
-    /// time since then, so that neither the forcing's phase nor the solvers' steps lose digits
-    /// to a large start time.
+}
+
+/// [`Params`] on the equations' clock. The equations run on the time since the simulation's
+/// current time, so that neither the forcing's phase nor the solvers' steps lose digits to a
+/// large start time; `phase0` is the support's phase, in turns, then. Params stay as built;
+/// the clock moves with the simulation (`Clocked::set_time`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Clocked {
+    pub p: Params,
     pub phase0: f64,
 }
 
-impl Params {
+impl std::ops::Deref for Clocked {
+    type Target = Params;
+
+    fn deref(&self) -> &Params {
+        &self.p
+    }
+}
+
+impl Clocked {
+    /// `p` with the equations' time starting at the absolute time `t`.
+    pub fn at(p: Params, t: f64) -> Self {
+        Clocked {
+            p,
+            phase0: turns(t, p.f),
+        }
+    }
+
+    /// Moves the time origin of the equations to the absolute time `t`.
+    pub(super) fn set_time(&mut self, t: f64) {
+        self.phase0 = turns(t, self.p.f);
+    }
+
     /// The velocity of the contact point M carried by the support: eta * (0, yp'), `t` after
     /// the simulation's current time (as every time these equations take).
     #[inline]
@@ -102,11 +129,13 @@ impl Params {
         self.va / (TAU * self.f) * (TAU * (self.phase0 + t * self.f).fract()).sin()
     }
 
-    /// Moves the time origin of the equations to the absolute time `t`.
-    pub(super) fn set_time(&mut self, t: f64) {
-        self.phase0 = turns(t, self.f);
+    #[inline]
+    pub fn contact(&self, t: f64, y: &[f64]) -> Contact {
+        self.contact_moving(y, self.support_velocity(t))
     }
+}
 
+impl Params {
     #[inline]
     pub(super) fn body_velocity(&self, y: &[f64]) -> Vector2<f64> {
         if self.held {
@@ -124,11 +153,6 @@ impl Params {
         } else {
             ((self.law.kt + self.kd) / self.m).sqrt()
         }
-    }
-
-    #[inline]
-    pub fn contact(&self, t: f64, y: &[f64]) -> Contact {
-        self.contact_moving(y, self.support_velocity(t))
     }
 
     /// The contact with the support point moving at `v_m`.
@@ -181,7 +205,7 @@ pub fn tolerance_scales(p: &Params, vd: f64) -> [f64; MAX_DIM] {
 
 /// The continuous-time ODE with the drive velocity `vd(t)`.
 pub struct Equations<'a> {
-    p: &'a Params,
+    p: &'a Clocked,
     vd: Ramp,
     /// Where steps also end inside the Stribeck band ([`solver::band_points`]).
     band_points: &'static [f64],
@@ -192,7 +216,7 @@ pub struct Equations<'a> {
 }
 
 impl<'a> Equations<'a> {
-    pub fn new(p: &'a Params, vd: Ramp, band_points: &'static [f64]) -> Self {
+    pub fn new(p: &'a Clocked, vd: Ramp, band_points: &'static [f64]) -> Self {
         Equations {
             p,
             vd,

@@ -25,7 +25,7 @@
 //! oscillation sqrt(kt/m) while the contact sticks (a Stormer-Verlet pair then): stable for
 //! h sqrt(kt/m) < 2, i.e. more than 2 steps a period at 3 kHz and the paper's kt, 60 at kt x 1000.
 
-use super::{Params, VX, VY, ZX, ZY};
+use super::{Clocked, Params, VX, VY, ZX, ZY};
 use crate::error::{Error, Failure};
 use crate::friction::lugre2d::{direction, SlipLaw};
 use crate::solve::failures;
@@ -108,7 +108,7 @@ fn body_velocity(p: &Params, y: &[f64]) -> Vector2<f64> {
 
 /// The equations the steps advance: the planar ones or the 1D ones (`axial`).
 pub struct Stepper<'a> {
-    pub p: &'a Params,
+    pub p: &'a Clocked,
     pub eq: &'a dyn Ode,
     pub axial: bool,
 }
@@ -227,7 +227,7 @@ fn bristle_1d(p: &Params, h: f64, z0: f64, v0: f64, v1: f64) -> f64 {
 /// the start's a put the direction off by O(h)); a at the centroid, with z interpolated along the
 /// predictor for its direction, makes the final update.
 fn bristle(
-    p: &Params,
+    p: &Clocked,
     t: f64,
     h: f64,
     z0: Vector2<f64>,

@@ -2,7 +2,7 @@
 //! radau5, dop853, rk4), the paper's own two-phase step, or the exact bristle update
 //! (`exponential`); and where in the Stribeck band the adaptive ones end their steps.
 
-use super::{exponential, tolerance_scales, two_phase, Params, VY, ZY};
+use super::{exponential, tolerance_scales, two_phase, Clocked, VY, ZY};
 use crate::models::switch::TransverseSolver;
 use crate::solve::dop853::Dop853;
 use crate::solve::dopri::Dopri5;
@@ -114,7 +114,7 @@ impl Solver {
     /// drive's nominal velocity, and `axial` says the 1D equations run.
     pub(super) fn new(
         name: TransverseSolver,
-        p: &Params,
+        p: &Clocked,
         (start_time, y): (f64, &[f64; MAX_DIM]),
         steps: u32,
         (rtol, vd): (f64, f64),

@@ -7,7 +7,7 @@
 //! a deflection that an Euler update drives below zero puts M on the other side of N.
 //! The mean of FFx sums FFx at the step ends times the step, the integral form of eq. 30.
 
-use super::{Params, Ramp, LAMBDA, Q, VX, VY, W, X, Y, ZX, ZY};
+use super::{Clocked, Ramp, LAMBDA, Q, VX, VY, W, X, Y, ZX, ZY};
 use crate::error::Error;
 use crate::solve::failures;
 use crate::solve::Work;
@@ -33,7 +33,7 @@ pub struct TwoPhase {
 
 impl TwoPhase {
     /// At `t0`, the absolute time `p`'s equations count from.
-    pub fn new(p: &Params, t0: f64, y: &[f64], steps_per_period: u32) -> Self {
+    pub fn new(p: &Clocked, t0: f64, y: &[f64], steps_per_period: u32) -> Self {
         let c = p.contact(0.0, y);
         TwoPhase {
             steps_per_period,
@@ -71,7 +71,7 @@ impl TwoPhase {
     /// fall between grid points. Accumulates the integral of FFx in `y[Q]`.
     pub fn advance(
         &mut self,
-        p: &Params,
+        p: &Clocked,
         vd: Ramp,
         (origin, t0, t1): (f64, f64, f64),
         y: &mut [f64],
@@ -112,7 +112,7 @@ impl TwoPhase {
 
     /// One step of eq. 11-29 over `h`. The drive stretch takes the exact integral of vd over the
     /// step (its midpoint value, vd being linear in t).
-    fn step(&mut self, p: &Params, vd: Ramp, t: f64, h: f64, y: &mut [f64]) {
+    fn step(&mut self, p: &Clocked, vd: Ramp, t: f64, h: f64, y: &mut [f64]) {
         let law = &p.law;
         let n_old = Vector2::new(y[X], y[Y]);
         let z = Vector2::new(y[ZX], y[ZY]);
