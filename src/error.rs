@@ -52,8 +52,6 @@ pub enum Failure {
     BeyondStability,
     /// The contact created energy: an unstable integration caught while still finite.
     CreatedEnergy,
-    /// An input moves out of its range over the step.
-    Input,
     /// The motion switches between sticking and sliding faster than can be resolved.
     Chatter,
     /// The solver was asked for what it cannot do (an interval, a state size, a reading).

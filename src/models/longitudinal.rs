@@ -794,9 +794,8 @@ impl Simulation for Longitudinal {
         if let Some(load) = self.load {
             let load = Ramp::checked("FN_in", load.value, load.rate)?;
             if !(load.value > 0.0 && load.at(h) > 0.0) {
-                return Err(Error::step(
-                    "input",
-                    Failure::Input,
+                return Err(Error::value_found(
+                    "FN_in",
                     format!(
                         "the normal force FN_in moves from {} N to {} N over the step from t = {}",
                         load.value,

@@ -2,7 +2,7 @@
 //! gives their derivatives.
 
 use super::*;
-use crate::error::{Failure, Kind};
+use crate::error::Kind;
 use crate::models::longitudinal::table::{
     LAW, NORMAL_FORCE_SOURCE, SOLVER, TABLE, VELOCITY_SOURCE,
 };
@@ -304,7 +304,7 @@ fn a_normal_force_that_reaches_zero_in_the_step_is_refused() {
     let mut sim = Longitudinal::new(&v, 0.0).unwrap();
     sim.set_input_derivative(vr::FN_IN, -WEIGHT * F).unwrap();
     let refused = sim.do_step(2.0 / F, &v).unwrap_err();
-    assert_eq!(refused.failure(), Some(Failure::Input), "{refused}");
+    assert_eq!(refused.kind, Kind::Value { name: "FN_in" }, "{refused}");
     assert_eq!(sim.time(), 0.0);
     let mut v = v.clone();
     v.set(vr::FN_IN, 0.0);
