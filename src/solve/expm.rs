@@ -136,7 +136,7 @@ pub fn expm<const N: usize>(a: &Matrix<N>) -> Result<Matrix<N>, Error> {
     let norm = norm_1(a);
     if !norm.is_finite() {
         return Err(Error::step(
-            "expm",
+            "matrix exponential",
             Failure::NotFinite,
             format!("a matrix with norm {norm}"),
             "a finite matrix",
@@ -194,7 +194,7 @@ fn expm_unbalanced<const N: usize>(a: &Matrix<N>, norm: f64) -> Result<Matrix<N>
     let mut pivots = [0; N];
     if !lu_factor(&mut lhs, N, &mut pivots) {
         return Err(Error::step(
-            "expm",
+            "matrix exponential",
             Failure::NotFinite,
             "a singular Pade denominator",
             "a matrix whose exponential f64 holds",

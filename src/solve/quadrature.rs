@@ -127,7 +127,7 @@ impl GaussKronrod {
             let allowed = self.tol_per_length * step;
             if !error.is_finite() {
                 return Err(Error::step(
-                    "quadrature",
+                    "Gauss-Kronrod quadrature",
                     Failure::NotFinite,
                     format!("the integrand became non-finite on [{t}, {}]", t + step),
                     "a finite integrand",
@@ -159,7 +159,7 @@ impl GaussKronrod {
             }
             if t + h <= t && t < b {
                 return Err(Error::step(
-                    "quadrature",
+                    "Gauss-Kronrod quadrature",
                     Failure::StepTooShort,
                     format!("the panel became too short at t = {t}"),
                     "an integrand the tolerance can follow: a looser tolerance",
