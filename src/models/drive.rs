@@ -18,15 +18,16 @@ mod equations;
 
 pub use equations::Params;
 
-use super::input_scheme::{self, Extrapolator};
+use super::input_scheme::{self, Extrapolator, InputScheme};
 use super::ramp::Ramp;
-use super::switch::{DriveSolver, InputScheme, Switch, VoltageSource};
+use super::switch::Switch;
 use super::{require_finite_start, require_non_negative, require_positive, Simulation};
 use crate::models::drive::table::{vr, TABLE};
 use crate::solve::expm::{expm, mul_vec, Matrix, Propagators};
 use crate::variables::values::ValueSet;
 use equations::{DIM, I, OMEGA, X};
 use std::f64::consts::TAU;
+use switches::{DriveSolver, VoltageSource};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Drive {
@@ -261,6 +262,7 @@ impl Simulation for Drive {
 
 #[cfg(feature = "tools")]
 pub mod stability;
+pub mod switches;
 pub mod table;
 
 #[cfg(test)]

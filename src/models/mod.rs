@@ -182,6 +182,14 @@ macro_rules! models {
 
         /// Every model this crate exports, in the order the CLI builds them.
         pub const MODELS: &[Model] = &[$($constant),*];
+
+        /// Every model's switch enums (its folder's switches.rs), and the input scheme's.
+        #[cfg(test)]
+        fn switch_enums() -> Vec<(&'static str, Vec<&'static str>)> {
+            let mut enums = vec![switch::items::<input_scheme::InputScheme>()];
+            $(enums.extend($module::switches::enums());)*
+            enums
+        }
     };
 }
 include!("list.rs");
@@ -302,9 +310,30 @@ pub fn resolved_energy(rtol: f64, fc: f64, kt: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{Scope, MODELS};
+    use super::{switch_enums, Scope, MODELS};
     use crate::variables::values::ValueSet;
-    use crate::variables::variable::Causality;
+    use crate::variables::variable::{Causality, EnumType};
+
+    /// Every switch type of every table has its enum, with the table's items in its order.
+    #[test]
+    fn every_switch_type_has_an_enum_with_its_items() {
+        let enums = switch_enums();
+        // A type several tables share (InputScheme) is the same const in each.
+        let mut types: Vec<&EnumType> = MODELS.iter().flat_map(|m| m.table.enum_types).collect();
+        types.sort_by_key(|t| t.name);
+        types.dedup_by_key(|t| t.name);
+        assert_eq!(enums.len(), types.len());
+        for enum_type in types {
+            let items: Vec<&str> = enum_type.items.iter().map(|(name, _)| *name).collect();
+            let found = enums.iter().find(|(name, _)| *name == enum_type.name);
+            assert_eq!(
+                found.map(|(_, variants)| variants),
+                Some(&items),
+                "{}",
+                enum_type.name
+            );
+        }
+    }
 
     /// What modelDescription.xml declares (canInterpolateInputs) is what the models do: every
     /// input of an interpolating model takes a derivative, no input of another model does.
