@@ -787,7 +787,7 @@ impl Transverse {
 }
 
 #[cfg(test)]
-mod tests;
+mod input_tests;
 
 #[cfg(test)]
-mod input_tests;
+mod tests;
