@@ -1,6 +1,18 @@
-//! Models: one file and folder per model, listed in `list.rs`. A model's simulation owns its
-//! state, its equations and its outputs; it reads parameters and inputs from a [`ValueSet`] and
-//! knows nothing of FMI.
+//! Models: one module file and folder per model, listed in `list.rs`. A model's simulation owns
+//! its state, its equations and its outputs; it reads parameters and inputs from a [`ValueSet`]
+//! and knows nothing of FMI.
+//!
+//! Every model has the same parts under the same names. `<model>.rs`: the simulation, its `build`
+//! (the [`Builder`]) and its constructors `new` (the full model), `with_scope` (a trimmed one) and
+//! `starting_from` (the state at the start time, before any periodic start is settled). Its
+//! folder: `table.rs` (the variables), `switches.rs` (the switches' enums), `equations.rs`,
+//! `solver.rs` (the solver menu), `stability.rs` (its cases in the stability matrix, feature
+//! `tools`), `tests.rs`, `input_tests.rs` (inputs moving over a step) and `documentation.html`
+//! (its page in the FMU). Other files hold a model's own schemes (closed forms, the paper's
+//! algorithms). Different by nature: DriveTrain is linear and steps by an exact propagator, so
+//! it has no solver menu (its `solver` switch has one item) and no `solver.rs`, no periodic start,
+//! and its tests are all about its inputs (no `input_tests.rs`); DryFrictionOscillator holds its
+//! input over each step, so it has no `input_tests.rs` either.
 
 pub mod drive;
 pub mod input_scheme;
