@@ -62,6 +62,7 @@ macro_rules! switch {
         }
     };
 }
+
 // Named by path from the models' folders (a macro_rules! is otherwise seen only below its
 // definition in the module tree).
 pub(crate) use switch;
