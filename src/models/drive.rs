@@ -15,19 +15,24 @@
 //! passivity to check; the state is checked finite.
 
 mod equations;
+#[cfg(feature = "tools")]
+pub mod stability;
+pub mod switches;
+pub mod table;
 
 pub use equations::Params;
 
-use super::input_scheme::{self, Extrapolator};
+use super::input_scheme::{self, Extrapolator, InputScheme};
 use super::ramp::Ramp;
-use super::switch::{DriveSolver, InputScheme, Switch, VoltageSource};
-use super::{require_finite_start, require_non_negative, require_positive, Simulation};
+use super::switch::Switch;
+use super::{require_finite_start, require_non_negative, require_positive, Scope, Simulation};
 use crate::error::{Error, Failure};
 use crate::models::drive::table::{vr, TABLE};
 use crate::solve::expm::{expm, mul_vec, Matrix, Propagators};
 use crate::variables::values::ValueSet;
 use equations::{DIM, I, OMEGA, X};
 use std::f64::consts::TAU;
+use switches::{DriveSolver, VoltageSource};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Drive {
@@ -45,22 +50,25 @@ pub struct Drive {
 pub fn build(
     values: &ValueSet,
     start_time: f64,
-    scope: &super::Scope,
+    scope: &Scope,
 ) -> Result<Box<dyn Simulation>, Error> {
     Ok(Box::new(Drive::with_scope(values, start_time, scope)?))
 }
 
 impl Drive {
-    /// The simulation for any interface: the drive has nothing a scope lets it skip.
-    pub fn with_scope(
-        values: &ValueSet,
-        start_time: f64,
-        _scope: &super::Scope,
-    ) -> Result<Self, Error> {
-        Drive::new(values, start_time)
+    /// The full model.
+    pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, Error> {
+        Drive::with_scope(values, start_time, &Scope::full())
     }
 
-    pub fn new(values: &ValueSet, start_time: f64) -> Result<Self, Error> {
+    /// The simulation for any interface: the drive has nothing a scope lets it skip, and no
+    /// periodic start to settle on (it starts at rest).
+    pub fn with_scope(values: &ValueSet, start_time: f64, scope: &Scope) -> Result<Self, Error> {
+        Drive::starting_from(values, start_time, scope)
+    }
+
+    /// The simulation at `start_time` with the drive at rest (i = omega = x_nut = 0).
+    fn starting_from(values: &ValueSet, start_time: f64, _scope: &Scope) -> Result<Self, Error> {
         require_finite_start(start_time)?;
         let resistance = require_positive(values, vr::R)?;
         let inductance = require_positive(values, vr::L)?;
@@ -269,10 +277,6 @@ impl Simulation for Drive {
         }
     }
 }
-
-#[cfg(feature = "tools")]
-pub mod stability;
-pub mod table;
 
 #[cfg(test)]
 mod tests;

@@ -26,8 +26,19 @@
 //! the growth ([`stability`]).
 
 use super::ramp::Ramp;
-use super::switch::{InputScheme, Switch};
+use super::switch::{switch, Switch};
 use crate::error::Error;
+use crate::variables::declare;
+
+switch!(
+    /// How an input moves over a step the master gives no derivative for (every model with
+    /// inputs).
+    InputScheme = declare::INPUT_SCHEME {
+        Held = "held",
+        Extrapolated = "extrapolated",
+        Corrected = "corrected",
+    }
+);
 
 /// The numbers [`Extrapolator::save`] writes.
 pub const SAVED: usize = 12 + Watch::SAVED;

@@ -22,15 +22,13 @@ mod equations;
 mod solver;
 #[cfg(feature = "tools")]
 pub mod stability;
+pub mod switches;
 pub mod table;
 
-use super::input_scheme::{self, Extrapolator};
+use super::input_scheme::{self, Extrapolator, InputScheme};
 use super::period_mean::PeriodMean;
 use super::ramp::Ramp;
-use super::switch::{
-    InputScheme, LongitudinalInitialState, LongitudinalLaw, NormalForceSource, Switch,
-    VelocitySource,
-};
+use super::switch::Switch;
 use super::{require_passive, require_positive, require_steps, resolved_energy, Scope, Simulation};
 use crate::error::{Error, Failure};
 use crate::friction::{coulomb, dahl::Dahl, lugre::LuGre, sgn};
@@ -45,6 +43,7 @@ use crate::variables::values::ValueSet;
 use closed_form::Sliding;
 use solver::Solver;
 use std::f64::consts::TAU;
+use switches::{LongitudinalInitialState, LongitudinalLaw, NormalForceSource, VelocitySource};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Law {

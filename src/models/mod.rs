@@ -1,6 +1,18 @@
-//! Models: one file and folder per model, listed in `list.rs`. A model's simulation owns its
-//! state, its equations and its outputs; it reads parameters and inputs from a [`ValueSet`] and
-//! knows nothing of FMI.
+//! Models: one module file and folder per model, listed in `list.rs`. A model's simulation owns
+//! its state, its equations and its outputs; it reads parameters and inputs from a [`ValueSet`]
+//! and knows nothing of FMI.
+//!
+//! Every model has the same parts under the same names. `<model>.rs`: the simulation, its `build`
+//! (the [`Builder`]) and its constructors `new` (the full model), `with_scope` (a trimmed one) and
+//! `starting_from` (the state at the start time, before any periodic start is settled). Its
+//! folder: `table.rs` (the variables), `switches.rs` (the switches' enums), `equations.rs`,
+//! `solver.rs` (the solver menu), `stability.rs` (its cases in the stability matrix, feature
+//! `tools`), `tests.rs`, `input_tests.rs` (inputs moving over a step) and `documentation.html`
+//! (its page in the FMU). Other files hold a model's own schemes (closed forms, the paper's
+//! algorithms). Different by nature: DriveTrain is linear and steps by an exact propagator, so
+//! it has no solver menu (its `solver` switch has one item) and no `solver.rs`, no periodic start,
+//! and its tests are all about its inputs (no `input_tests.rs`); DryFrictionOscillator holds its
+//! input over each step, so it has no `input_tests.rs` either.
 
 pub mod drive;
 pub mod input_scheme;
@@ -194,6 +206,14 @@ macro_rules! models {
 
         /// Every model this crate exports, in the order the CLI builds them.
         pub const MODELS: &[Model] = &[$($constant),*];
+
+        /// Every model's switch enums (its folder's switches.rs), and the input scheme's.
+        #[cfg(test)]
+        fn switch_enums() -> Vec<(&'static str, Vec<&'static str>)> {
+            let mut enums = vec![switch::items::<input_scheme::InputScheme>()];
+            $(enums.extend($module::switches::enums());)*
+            enums
+        }
     };
 }
 include!("list.rs");
@@ -352,9 +372,30 @@ pub fn resolved_energy(rtol: f64, fc: f64, kt: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{Scope, MODELS};
+    use super::{switch_enums, Scope, MODELS};
     use crate::variables::values::ValueSet;
-    use crate::variables::variable::Causality;
+    use crate::variables::variable::{Causality, EnumType};
+
+    /// Every switch type of every table has its enum, with the table's items in its order.
+    #[test]
+    fn every_switch_type_has_an_enum_with_its_items() {
+        let enums = switch_enums();
+        // A type several tables share (InputScheme) is the same const in each.
+        let mut types: Vec<&EnumType> = MODELS.iter().flat_map(|m| m.table.enum_types).collect();
+        types.sort_by_key(|t| t.name);
+        types.dedup_by_key(|t| t.name);
+        assert_eq!(enums.len(), types.len());
+        for enum_type in types {
+            let items: Vec<&str> = enum_type.items.iter().map(|(name, _)| *name).collect();
+            let found = enums.iter().find(|(name, _)| *name == enum_type.name);
+            assert_eq!(
+                found.map(|(_, variants)| variants),
+                Some(&items),
+                "{}",
+                enum_type.name
+            );
+        }
+    }
 
     /// What modelDescription.xml declares (canInterpolateInputs) is what the models do: every
     /// input of an interpolating model takes a derivative, no input of another model does.

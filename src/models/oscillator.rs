@@ -24,13 +24,12 @@ mod linear_phase;
 mod solver;
 #[cfg(feature = "tools")]
 pub mod stability;
+pub mod switches;
 pub mod table;
 
 pub use equations::{Equations, Forced};
 
-use super::switch::{
-    ForceSource, OscillatorInitialState, OscillatorLaw, OscillatorSolver, Switch as _,
-};
+use super::switch::Switch as _;
 use super::{
     require_finite, require_non_negative, require_positive, require_steps, Scope, Simulation,
 };
@@ -49,6 +48,7 @@ use exact::{Event, Mode, State, Switch};
 use linear_phase::LinearPhase;
 use solver::Solver;
 use std::f64::consts::TAU;
+use switches::{ForceSource, OscillatorInitialState, OscillatorLaw, OscillatorSolver};
 
 /// One per instance, built once: the sizes of the variants do not matter, and the regularised
 /// core, which every right-hand side evaluation reads, stays unboxed.

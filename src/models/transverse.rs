@@ -21,6 +21,7 @@ mod exponential;
 mod solver;
 #[cfg(feature = "tools")]
 pub mod stability;
+pub mod switches;
 pub mod table;
 mod two_phase;
 
@@ -29,10 +30,10 @@ pub use solver::Solver;
 
 use equations::{band_coordinate, kink_switches, BAND};
 
-use super::input_scheme::{self, Extrapolator};
+use super::input_scheme::{self, Extrapolator, InputScheme};
 use super::period_mean::PeriodMean;
 use super::ramp::Ramp;
-use super::switch::{self, DriveSource, InitialState, InputScheme, Switch, TransverseSolver};
+use super::switch::Switch;
 use super::{
     require_finite, require_finite_start, require_non_negative, require_passive, require_positive,
     require_steps, require_tolerance, resolved_energy, Scope, Simulation,
@@ -48,6 +49,7 @@ use crate::solve::{within_step_budget, Integrator, Ode, Work, MAX_DIM};
 use crate::variables::values::ValueSet;
 use nalgebra::Vector2;
 use std::f64::consts::TAU;
+use switches::{DriveSource, InitialState, TransverseSolver};
 
 // The state: first what the right-hand side reads (the body's velocity, the drive spring, the
 // bristle), then the quadratures ([`Ode::coupled`]). The 1D equations ([`axial`]) use the same
@@ -278,11 +280,11 @@ impl Transverse {
             h0: 2.0 * zeta * (m * kt).sqrt(),
             hv,
         };
-        let slip = match switch::SlipLaw::read(values, vr::SLIP_LAW)? {
-            switch::SlipLaw::Total => SlipLaw::Total,
-            switch::SlipLaw::Split => SlipLaw::Split,
+        let slip = match switches::SlipLaw::read(values, vr::SLIP_LAW)? {
+            switches::SlipLaw::Total => SlipLaw::Total,
+            switches::SlipLaw::Split => SlipLaw::Split,
         };
-        let held = switch::Body::read(values, vr::BODY)? == switch::Body::Held;
+        let held = switches::Body::read(values, vr::BODY)? == switches::Body::Held;
         let p = Clocked::at(
             Params {
                 law,
@@ -771,7 +773,7 @@ impl Transverse {
 }
 
 #[cfg(test)]
-mod tests;
+mod input_tests;
 
 #[cfg(test)]
-mod input_tests;
+mod tests;

@@ -6,11 +6,12 @@
 
 use super::closed_form::ClosedForm;
 use super::equations::{Bristle, LoadedLaw};
+use super::switches::LongitudinalSolver;
 use super::Law;
 use crate::error::{Error, Failure};
 use crate::models::longitudinal::table::vr;
 use crate::models::require_tolerance;
-use crate::models::switch::{LongitudinalSolver, Switch};
+use crate::models::switch::Switch;
 use crate::solve::dopri::Dopri5;
 use crate::solve::method::Method;
 use crate::solve::radau::Radau5;

@@ -3,9 +3,9 @@
 //! stiction), fixed-step RK4, and `piecewise`: the linear motion outside H's band in closed form
 //! ([`super::linear_phase`]), dopri5 inside it.
 
+use super::switches::OscillatorSolver;
 use super::Equations;
 use crate::error::Error;
-use crate::models::switch::OscillatorSolver;
 use crate::solve::dopri::Dopri5;
 use crate::solve::method::Method;
 use crate::solve::radau::{Radau5, StepPolynomial};

@@ -2,8 +2,8 @@
 //! radau5, dop853, rk4), the paper's own two-phase step, or the exact bristle update
 //! (`exponential`); and where in the Stribeck band the adaptive ones end their steps.
 
+use super::switches::TransverseSolver;
 use super::{exponential, tolerance_scales, two_phase, Clocked, VY, ZY};
-use crate::models::switch::TransverseSolver;
 use crate::solve::dop853::Dop853;
 use crate::solve::dopri::Dopri5;
 use crate::solve::method::Method;
