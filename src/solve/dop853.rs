@@ -563,7 +563,9 @@ impl Dop853 {
     /// first `len` states (the others keep what `arg` holds), and the right-hand side there into
     /// k[ST]. The stage is a constant so that its row of A is one: the sums run row by row over
     /// the nonzero coefficients alone (half of dop853's are zero), in the stages' order.
+    // The loops index the row of A, the stages and the sums together.
     #[inline(always)]
+    #[allow(clippy::needless_range_loop)]
     fn stage<S: Switching + ?Sized, const ST: usize>(
         ode: &S,
         (t, y, h): (f64, &[f64], f64),
