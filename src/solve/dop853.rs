@@ -517,18 +517,31 @@ impl Dop853 {
         tr.has_end = false;
         let mut arg = [0.0; MAX_DIM];
         arg[..n].copy_from_slice(&y[..n]);
-        for s in 1..12 {
-            Self::stage(ode, (t, y, h), tr, s, coupled, &mut arg);
+        // The stages written out (constant rows of A), each skipping its zero coefficients.
+        macro_rules! stages {
+            ($($s:literal)*) => {$(
+                Self::stage::<S, $s>(ode, (t, y, h), tr, coupled, &mut arg);
+            )*};
         }
+        stages!(1 2 3 4 5 6 7 8 9 10 11);
         work.rhs_evaluations += 11;
         tr.last_argument = arg;
         let (mut sum5, mut sum3, mut controlled) = (0.0, 0.0, 0);
         for j in 0..n {
             let (mut b, mut e5, mut e3) = (0.0, 0.0, 0.0);
+            // Zero weights skipped (the compiler may not drop 0 * k itself); the sums' order
+            // is the stages'.
             for s in 0..12 {
-                b += A[12][s] * tr.k[s][j];
-                e5 += E5[s] * tr.k[s][j];
-                e3 += E3[s] * tr.k[s][j];
+                let k = tr.k[s][j];
+                if A[12][s] != 0.0 {
+                    b += A[12][s] * k;
+                }
+                if E5[s] != 0.0 {
+                    e5 += E5[s] * k;
+                }
+                if E3[s] != 0.0 {
+                    e3 += E3[s] * k;
+                }
             }
             tr.y_new[j] = y[j] + h * b;
             // An infinite atol leaves a quadrature out of the error control and the count.
@@ -548,26 +561,35 @@ impl Dop853 {
         tr.err = if err.is_finite() { err } else { f64::INFINITY };
     }
 
-    /// Stage `s` of the step `h` from `(t, y)`: its argument y + h sum_r a_sr k_r over the first
-    /// `len` states (the others keep what `arg` holds), and the right-hand side there into k[s].
-    fn stage<S: Switching + ?Sized>(
+    /// Stage `ST` of the step `h` from `(t, y)`: its argument y + h sum_r a_sr k_r over the
+    /// first `len` states (the others keep what `arg` holds), and the right-hand side there into
+    /// k[ST]. The stage is a constant so that its row of A is one: the sums run row by row over
+    /// the nonzero coefficients alone (half of dop853's are zero), in the stages' order.
+    // The loops index the row of A, the stages and the sums together.
+    #[inline(always)]
+    #[allow(clippy::needless_range_loop)]
+    fn stage<S: Switching + ?Sized, const ST: usize>(
         ode: &S,
         (t, y, h): (f64, &[f64], f64),
         tr: &mut Trial,
-        s: usize,
         len: usize,
         arg: &mut [f64; MAX_DIM],
     ) {
         let n = ode.dim().min(MAX_DIM);
-        for j in 0..len {
-            let mut sum = 0.0;
-            for (a, k) in A[s][..s].iter().zip(&tr.k[..s]) {
-                sum += a * k[j];
+        let mut sum = [0.0; MAX_DIM];
+        for r in 0..ST {
+            let a = A[ST][r];
+            if a != 0.0 {
+                for j in 0..len {
+                    sum[j] += a * tr.k[r][j];
+                }
             }
-            arg[j] = y[j] + h * sum;
         }
-        let (_, rest) = tr.k.split_at_mut(s);
-        ode.rhs(t + C[s] * h, &arg[..n], &mut rest[0][..n]);
+        for j in 0..len {
+            arg[j] = y[j] + h * sum[j];
+        }
+        let (_, rest) = tr.k.split_at_mut(ST);
+        ode.rhs(t + C[ST] * h, &arg[..n], &mut rest[0][..n]);
     }
 
     /// The derivative at the trial's end into k[12] (the next step's first stage), once.
@@ -594,9 +616,9 @@ impl Dop853 {
         let n = ode.dim().min(MAX_DIM);
         Self::end_derivative(ode, t + h, tr, work);
         let mut arg = [0.0; MAX_DIM];
-        for s in 13..16 {
-            Self::stage(ode, (t, y, h), tr, s, n, &mut arg);
-        }
+        Self::stage::<S, 13>(ode, (t, y, h), tr, n, &mut arg);
+        Self::stage::<S, 14>(ode, (t, y, h), tr, n, &mut arg);
+        Self::stage::<S, 15>(ode, (t, y, h), tr, n, &mut arg);
         work.rhs_evaluations += 3;
         let mut d = Dense {
             y0: [0.0; MAX_DIM],

@@ -1,6 +1,7 @@
 //! The cases: for each, our solvers through the simulation (the step functions the FMU calls
 //! in-process), the peers on the same right-hand sides, and the reference value.
 
+use crate::fmu_library;
 use crate::peers::{self, Outcome, Peer};
 use crate::problem::{self, Mode, Reading, Spec};
 use friction_fmu::friction::regularized::Regularized;
@@ -36,12 +37,18 @@ impl std::fmt::Display for Knob {
     }
 }
 
+/// The name of a curve of ours through the FMU's library: its in-process twin's and this.
+pub const LIBRARY_SUFFIX: &str = " (FMU library)";
+
 pub type Runner = Rc<dyn Fn(Knob) -> Result<Outcome, String>>;
 
 /// One solver's work-precision curve: its settings, loosest first.
 pub struct Curve {
     pub name: String,
     pub ours: bool,
+    /// Ours through the FMU's own library (`fmu` profile, fmi2 calls: [`crate::fmu_library`]),
+    /// reported beside the in-process runs (`ours`), never as a peer.
+    pub via_library: bool,
     pub knobs: Vec<Knob>,
     pub run: Runner,
     /// Why the solver is not run on this case, if it is not.
@@ -105,6 +112,7 @@ fn peer_curves<P: problem::Problem + 'static>(spec: Rc<Spec<P>>, peers: &[Peer])
             Curve {
                 name: peer.name().into(),
                 ours: false,
+                via_library: false,
                 knobs: tolerances(),
                 run: Rc::new(move |k| peers::run(peer, &spec, tolerance(k))),
                 absent: None,
@@ -155,6 +163,32 @@ fn transverse_values(slip_law: &str, kt_factor: f64, solver: &str, knob: Knob) -
     v
 }
 
+/// Ours through the FMU's library: the same run by fmi2 calls, one fmi2DoStep a period.
+fn transverse_library(
+    library: Rc<fmu_library::Library>,
+    slip_law: &'static str,
+    kt_factor: f64,
+    solver: &'static str,
+) -> Runner {
+    Rc::new(move |knob| {
+        let v = transverse_values(slip_law, kt_factor, solver, knob);
+        let mut integers: Vec<(u32, i32)> = [it::vr::SLIP_LAW, it::vr::INITIAL, it::vr::SOLVER]
+            .map(|vr| (vr, v.real(vr) as i32))
+            .to_vec();
+        let mut reals: Vec<(u32, f64)> = [it::vr::VD, it::vr::VA, it::vr::F, it::vr::KT]
+            .map(|vr| (vr, v.real(vr)))
+            .to_vec();
+        match knob {
+            Knob::StepsPerPeriod(n) => integers.push((it::vr::STEPS_PER_PERIOD, n as i32)),
+            Knob::Tolerance(t) => reals.push((it::vr::TOLERANCE, t)),
+        }
+        let setting = fmu_library::Setting { integers, reals };
+        let value = library.run(&setting, 1.0 / 3000.0, T_PERIODS, it::vr::FFX_MEAN)?;
+        // The library reports no counts: the in-process twin's are filled in (main.rs).
+        Ok(Outcome { value, rhs: 0 })
+    })
+}
+
 /// Ours: the simulation from steady sliding, one communication step a period, FFx_mean at the end.
 fn transverse_ours(slip_law: &'static str, kt_factor: f64, solver: &'static str) -> Runner {
     Rc::new(move |knob| {
@@ -202,6 +236,7 @@ pub fn transverse(slip_law: &'static str, kt_factor: f64, scipy: &[(f64, f64)]) 
         curves.push(Curve {
             name: "ours dopri5".into(),
             ours: true,
+            via_library: false,
             knobs: tolerances(),
             run: transverse_ours(slip_law, kt_factor, "dopri5"),
             absent: None,
@@ -209,14 +244,35 @@ pub fn transverse(slip_law: &'static str, kt_factor: f64, scipy: &[(f64, f64)]) 
         curves.push(Curve {
             name: "ours dop853".into(),
             ours: true,
+            via_library: false,
             knobs: tolerances(),
             run: transverse_ours(slip_law, kt_factor, "dop853"),
             absent: None,
         });
+        // The same through the FMU's library: the explicit pairs, which are ours' fastest here.
+        let library = fmu_library::Library::load("TransverseFriction").map(Rc::new);
+        for solver in ["dopri5", "dop853"] {
+            let (run, absent): (Runner, _) = match &library {
+                Ok(l) => (
+                    transverse_library(l.clone(), slip_law, kt_factor, solver),
+                    None,
+                ),
+                Err(e) => (Rc::new(|_| Err("no library".into())), Some(e.clone())),
+            };
+            curves.push(Curve {
+                name: format!("ours {solver}{LIBRARY_SUFFIX}"),
+                ours: false,
+                via_library: true,
+                knobs: tolerances(),
+                run,
+                absent,
+            });
+        }
     }
     curves.push(Curve {
         name: "ours radau5".into(),
         ours: true,
+        via_library: false,
         knobs: tolerances(),
         run: transverse_ours(slip_law, kt_factor, "radau5"),
         absent: None,
@@ -224,6 +280,7 @@ pub fn transverse(slip_law: &'static str, kt_factor: f64, scipy: &[(f64, f64)]) 
     curves.push(Curve {
         name: "ours exponential".into(),
         ours: true,
+        via_library: false,
         knobs: steps(&[25, 50, 100, 200, 400, 800, 1600, 3200, 6400]),
         run: transverse_ours(slip_law, kt_factor, "exponential"),
         absent: None,
@@ -332,6 +389,7 @@ pub fn longitudinal() -> Case {
         Curve {
             name: "ours dopri5".into(),
             ours: true,
+            via_library: false,
             knobs: tolerances(),
             run: longitudinal_ours("dopri5"),
             absent: None,
@@ -339,6 +397,7 @@ pub fn longitudinal() -> Case {
         Curve {
             name: "ours radau5".into(),
             ours: true,
+            via_library: false,
             knobs: tolerances(),
             run: longitudinal_ours("radau5"),
             absent: None,
@@ -346,6 +405,7 @@ pub fn longitudinal() -> Case {
         Curve {
             name: "ours closed_form".into(),
             ours: true,
+            via_library: false,
             knobs: tolerances(),
             run: longitudinal_ours("closed_form"),
             absent: None,
@@ -353,6 +413,7 @@ pub fn longitudinal() -> Case {
         Curve {
             name: "ours exponential".into(),
             ours: true,
+            via_library: false,
             knobs: steps(&[25, 50, 100, 200, 400, 800, 1600, 3200, 6400, 12800]),
             run: longitudinal_ours("exponential"),
             absent: None,
@@ -452,6 +513,7 @@ pub fn oscillator_trigonometric() -> Case {
         Curve {
             name: "ours radau5".into(),
             ours: true,
+            via_library: false,
             knobs: tolerances(),
             run: oscillator_ours("trigonometric", "radau5"),
             absent: None,
@@ -459,6 +521,7 @@ pub fn oscillator_trigonometric() -> Case {
         Curve {
             name: "ours dopri5".into(),
             ours: true,
+            via_library: false,
             knobs: tolerances(),
             run: oscillator_ours("trigonometric", "dopri5"),
             absent: None,
@@ -466,6 +529,7 @@ pub fn oscillator_trigonometric() -> Case {
         Curve {
             name: "ours piecewise".into(),
             ours: true,
+            via_library: false,
             knobs: tolerances(),
             run: oscillator_ours("trigonometric", "piecewise"),
             absent: None,
@@ -509,6 +573,7 @@ pub fn oscillator_exact() -> Case {
     let mut curves = vec![Curve {
         name: "ours exact (closed form)".into(),
         ours: true,
+        via_library: false,
         knobs: steps(&[8, 128]),
         run: oscillator_ours("exact", "radau5"),
         absent: None,
@@ -518,6 +583,7 @@ pub fn oscillator_exact() -> Case {
         curves.push(Curve {
             name: peer.name().into(),
             ours: false,
+            via_library: false,
             knobs: tolerances(),
             run: Rc::new(move |k| {
                 peers::run_switch(peer, &switch, span, period / 8.0, tolerance(k))

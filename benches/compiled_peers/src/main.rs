@@ -8,12 +8,20 @@
 //! CPU time of the running thread; each setting's median of [`REPEATS`] runs, the settings of
 //! one case taken in turn in every round, so the machine's drift spreads over all of them.
 //!
+//! Ours in scene T also runs through the library the FMU carries (`fmu` profile, without
+//! link-time optimisation), loaded with dlopen and driven by fmi2 calls, one fmi2DoStep a
+//! period ([`fmu_library`]: build it first with
+//! `cargo build --profile fmu -p friction-fmu-binary --examples` in the main crate); its rows
+//! are marked "FMU library" and that is the one that counts. Its counts are its in-process
+//! twin's (the same steps).
+//!
 //! Arguments, if any, pick cases by position (0-6, in the order of `main`); with
 //! `PEERS_VERBOSE` set, every setting's error and time is printed to stderr as it is first run.
 
 mod cases;
 mod cvode;
 mod dop853;
+mod fmu_library;
 mod peers;
 mod problem;
 
@@ -212,6 +220,28 @@ fn measure(case: &Case) -> Measured {
         }
         eprint!(".");
     }
+    // The library reports no counts: a run through it takes the steps of its in-process twin
+    // (the same code; their readings agree to the bit, checked here).
+    for k in 0..points.len() {
+        let curve = &case.curves[points[k].curve];
+        if !curve.via_library {
+            continue;
+        }
+        let twin = curve.name.trim_end_matches(cases::LIBRARY_SUFFIX);
+        let found = points
+            .iter()
+            .find(|q| case.curves[q.curve].name == twin && q.knob == points[k].knob)
+            .map(|q| (q.rhs, q.error));
+        if let Some((rhs, error)) = found {
+            points[k].rhs = rhs;
+            if error != points[k].error {
+                eprintln!(
+                    "{} {}: error {:.3e} in-process, {:.3e} through the library",
+                    twin, points[k].knob, error, points[k].error
+                );
+            }
+        }
+    }
     for k in (0..points.len()).rev() {
         if let Some(next) = points.get(k + 1) {
             if next.curve == points[k].curve {
@@ -330,10 +360,63 @@ fn report(case: &Case, m: &Measured, out: &mut impl Write, summary: &mut Vec<Str
             ours_cells.join(" | ")
         ),
     );
+    // Ours through the FMU's library, where the case runs it.
+    let library_all: Vec<(f64, f64)> = m
+        .points
+        .iter()
+        .filter(|p| case.curves[p.curve].via_library)
+        .map(|p| (p.worst, p.median()))
+        .collect();
+    let library = frontier(&library_all);
+    let has_library = !library.is_empty();
+    if has_library {
+        let cells: Vec<String> = ERRORS
+            .iter()
+            .map(|&e| {
+                let best = case
+                    .curves
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, c)| c.via_library)
+                    .map(|(ci, c)| (c.name.as_str(), time_at(&frontier(&curve_points(ci)), e)))
+                    .collect::<Vec<_>>();
+                let name = |n: &str| {
+                    n.trim_start_matches("ours ")
+                        .trim_end_matches(cases::LIBRARY_SUFFIX)
+                        .to_string()
+                };
+                match (time_at(&library, e), fastest(&best)) {
+                    (Cost::Exactly(t), Some((n, _))) => format!("{t:.2e} s ({})", name(n)),
+                    (Cost::AtMost(t), Some((n, _))) => format!("<= {t:.2e} s ({})", name(n)),
+                    (Cost::AtLeast(t), _) => format!("n/r (>= {t:.2e} s)"),
+                    _ => "-".into(),
+                }
+            })
+            .collect();
+        w(
+            out,
+            format!(
+                "| **ours, FMU library** (CPU s; `fmu` profile, fmi2 calls) | {} |",
+                cells.join(" | ")
+            ),
+        );
+    }
+    for c in case.curves.iter().filter(|c| c.via_library) {
+        if let Some(why) = &c.absent {
+            w(
+                out,
+                format!(
+                    "| {} | {} |",
+                    c.name,
+                    vec![why.as_str(); ERRORS.len()].join(" | ")
+                ),
+            );
+        }
+    }
     let mut peer_ats: Vec<Vec<(&str, Cost)>> = vec![Vec::new(); ERRORS.len()];
     let mut cvode_bdf: Vec<Cost> = vec![Cost::Nothing; ERRORS.len()];
     for (ci, curve) in case.curves.iter().enumerate() {
-        if curve.ours {
+        if curve.ours || curve.via_library {
             continue;
         }
         if let Some(why) = &curve.absent {
@@ -390,6 +473,23 @@ fn report(case: &Case, m: &Measured, out: &mut impl Write, summary: &mut Vec<Str
             fastest_cells.join(" | ")
         ),
     );
+    let library_cells: Vec<String> = peer_ats
+        .iter()
+        .enumerate()
+        .map(|(k, ats)| match fastest(ats) {
+            Some((name, at)) => format!("{} ({name})", ratio(at, time_at(&library, ERRORS[k]))),
+            None => "-".into(),
+        })
+        .collect();
+    if has_library {
+        w(
+            out,
+            format!(
+                "| **fastest compiled peer / ours, FMU library** | {} |",
+                library_cells.join(" | ")
+            ),
+        );
+    }
     // Where the ratio comes from: the fastest peer's right-hand sides over ours, and its CPU
     // time per right-hand side over ours (the two multiply to the ratio).
     let ours_rhs = triples(true, None);
@@ -428,6 +528,13 @@ fn report(case: &Case, m: &Measured, out: &mut impl Write, summary: &mut Vec<Str
         case.title.split(',').next().unwrap_or(""),
         fastest_cells.join(" | ")
     ));
+    if has_library {
+        summary.push(format!(
+            "| {}, FMU library | {} |",
+            case.title.split(',').next().unwrap_or(""),
+            library_cells.join(" | ")
+        ));
+    }
     if case.title.contains("kt x 1000") {
         let cells: Vec<String> = cvode_bdf
             .iter()
