@@ -330,29 +330,34 @@ fn report(case: &Case, m: &Measured, out: &mut impl Write, summary: &mut Vec<Str
         ),
     );
     w(out, format!("|---|{}", "---|".repeat(ERRORS.len())));
-    // Ours: the CPU time and which of our solvers gives it.
-    let ours_cells: Vec<String> = ERRORS
-        .iter()
-        .map(|&e| {
-            let best = case
-                .curves
-                .iter()
-                .enumerate()
-                .filter(|(_, c)| c.ours)
-                .map(|(ci, c)| (c.name.as_str(), time_at(&frontier(&curve_points(ci)), e)))
-                .collect::<Vec<_>>();
-            match (time_at(&ours, e), fastest(&best)) {
-                (Cost::Exactly(t), Some((name, _))) => {
-                    format!("{:.2e} s ({})", t, name.trim_start_matches("ours "))
+    // Ours (in-process, or through the FMU's library): the CPU time at each error on the
+    // frontier `ours` of the curves `pick` selects, and which solver gives it.
+    let our_cells = |pick: fn(&cases::Curve) -> bool, ours: &[(f64, f64)]| -> Vec<String> {
+        ERRORS
+            .iter()
+            .map(|&e| {
+                let best = case
+                    .curves
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, c)| pick(c))
+                    .map(|(ci, c)| (c.name.as_str(), time_at(&frontier(&curve_points(ci)), e)))
+                    .collect::<Vec<_>>();
+                let name = |n: &str| {
+                    n.trim_start_matches("ours ")
+                        .trim_end_matches(cases::LIBRARY_SUFFIX)
+                        .to_string()
+                };
+                match (time_at(ours, e), fastest(&best)) {
+                    (Cost::Exactly(t), Some((n, _))) => format!("{t:.2e} s ({})", name(n)),
+                    (Cost::AtMost(t), Some((n, _))) => format!("<= {t:.2e} s ({})", name(n)),
+                    (Cost::AtLeast(t), _) => format!("n/r (>= {t:.2e} s)"),
+                    _ => "-".into(),
                 }
-                (Cost::AtMost(t), Some((name, _))) => {
-                    format!("<= {:.2e} s ({})", t, name.trim_start_matches("ours "))
-                }
-                (Cost::AtLeast(t), _) => format!("n/r (>= {t:.2e} s)"),
-                _ => "-".into(),
-            }
-        })
-        .collect();
+            })
+            .collect()
+    };
+    let ours_cells = our_cells(|c| c.ours, &ours);
     w(
         out,
         format!(
@@ -370,29 +375,7 @@ fn report(case: &Case, m: &Measured, out: &mut impl Write, summary: &mut Vec<Str
     let library = frontier(&library_all);
     let has_library = !library.is_empty();
     if has_library {
-        let cells: Vec<String> = ERRORS
-            .iter()
-            .map(|&e| {
-                let best = case
-                    .curves
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, c)| c.via_library)
-                    .map(|(ci, c)| (c.name.as_str(), time_at(&frontier(&curve_points(ci)), e)))
-                    .collect::<Vec<_>>();
-                let name = |n: &str| {
-                    n.trim_start_matches("ours ")
-                        .trim_end_matches(cases::LIBRARY_SUFFIX)
-                        .to_string()
-                };
-                match (time_at(&library, e), fastest(&best)) {
-                    (Cost::Exactly(t), Some((n, _))) => format!("{t:.2e} s ({})", name(n)),
-                    (Cost::AtMost(t), Some((n, _))) => format!("<= {t:.2e} s ({})", name(n)),
-                    (Cost::AtLeast(t), _) => format!("n/r (>= {t:.2e} s)"),
-                    _ => "-".into(),
-                }
-            })
-            .collect();
+        let cells = our_cells(|c| c.via_library, &library);
         w(
             out,
             format!(
