@@ -35,7 +35,6 @@ use crate::friction::{coulomb, dahl::Dahl, lugre::LuGre, sgn};
 use crate::models::longitudinal::table::vr;
 use crate::solve::method::Method;
 use crate::solve::phase::{cos_turns, turns};
-use crate::solve::rk4::Rk4;
 use crate::solve::shooting::{self, NoOrbit};
 use crate::solve::stepping::Stepping;
 use crate::solve::{within_step_budget, Work};
@@ -638,9 +637,7 @@ impl Longitudinal {
         // a period's boundary, say): one explicit step, as the adaptive solvers took there when
         // they counted absolute time (counted from the step's start, they would take the
         // interval for a real one and refine it).
-        let mut round_off = Solver::General(Method::Rk4(Rk4 {
-            h_max: f64::INFINITY,
-        }));
+        let mut round_off = Solver::General(Method::across_round_off());
         let solver = if super::within_round_off(self.t + t0, self.t + t_ode) {
             &mut round_off
         } else {

@@ -38,11 +38,9 @@ use crate::friction::regularized::{stiction_excess, Regularized};
 use crate::friction::sgn;
 use crate::models::oscillator::table::{vr, TABLE};
 use crate::solve::dopri::Dopri5;
-use crate::solve::method::Method;
-use crate::solve::radau::StepPolynomial;
 use crate::solve::shooting::{self, NoOrbit};
-use crate::solve::stepping::{CallEnd, Stepping};
-use crate::solve::{within_step_budget, Ode, Work};
+use crate::solve::stepping::{CallEnd, StepAhead, Stepping, AHEAD_HINTS};
+use crate::solve::{within_step_budget, Ode, Work, MAX_DIM};
 use crate::variables::values::ValueSet;
 use exact::{Event, Mode, State, Switch};
 use linear_phase::LinearPhase;
@@ -98,13 +96,13 @@ impl PeriodMax {
     }
 }
 
-/// A radau5 step taken past the communication point: the calls that end inside it read the
-/// state from its polynomial instead of each taking a step of its own, which at communication
-/// steps far shorter than the solver's is nearly every call. Only while the force is prescribed:
-/// an input may change at every call, and the step would no longer be the motion's.
+/// A solver's step taken past the communication point: the calls that end inside it read the
+/// state from it instead of each taking a step of its own, which at communication steps far
+/// shorter than the solver's is nearly every call. Only while the force is prescribed: an input
+/// may change at every call, and the step would no longer be the motion's.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Ahead {
-    step: StepPolynomial,
+    step: StepAhead,
     /// (t, u, u', W) at the step's end, where the integration goes on from.
     end: [f64; 4],
     /// The largest |u| from where the step was taken to its end, for the amplitude once the
@@ -112,12 +110,12 @@ struct Ahead {
     largest: f64,
 }
 
-/// What the steps taken ahead take in a saved state: radau5's proposed step, the longest one to
-/// take ahead, a flag, the polynomial of at most 3 states, the end and the largest |u|.
-const AHEAD_SAVED: usize = 3 + StepPolynomial::saved_len(3) + 4 + 1;
+/// What the steps taken ahead take in a saved state besides the step itself (of at most
+/// [`DIM`] states): what the solver carries towards them, a flag, the end and the largest |u|.
+const AHEAD_SAVED: usize = AHEAD_HINTS + 1 + 4 + 1;
 
-/// The fewest communication steps a step taken ahead must hold ([`Oscillator::take_step_ahead`]).
-const CALLS_AHEAD: f64 = 4.0;
+/// The most states the regularised core integrates: u, u' and the friction work.
+const DIM: usize = 3;
 
 /// The numbers of a saved state without the step ahead.
 const STATE_SAVED: usize = 10;
@@ -125,12 +123,10 @@ const STATE_SAVED: usize = 10;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Oscillator {
     core: Core,
-    /// Steps may be taken past the communication point ([`Ahead`]): radau5, force prescribed.
+    /// Steps may be taken past the communication point ([`Ahead`]): the solver takes them, and
+    /// the force is prescribed.
     takes_steps_ahead: bool,
     ahead: Option<Ahead>,
-    /// The longest step to take ahead: one whose polynomial is read within the tolerance
-    /// ([`StepPolynomial::interior_error`]), as the last one taken shows.
-    ahead_limit: f64,
     state: State,
     /// The input force held over the current step.
     held: f64,
@@ -321,14 +317,13 @@ impl Oscillator {
         };
         let takes_steps_ahead = matches!(
             &core,
-            Core::Regularized(equations, Solver::General(Method::Radau5(_)))
-                if !equations.plant.input
+            Core::Regularized(equations, Solver::General(method))
+                if method.takes_steps_ahead() && !equations.plant.input
         );
         Ok(Oscillator {
             core,
             takes_steps_ahead,
             ahead: None,
-            ahead_limit: f64::MAX,
             state: State {
                 t: start_time,
                 u: u0,
@@ -384,7 +379,6 @@ impl Oscillator {
         t_end: f64,
         log: Option<&mut Vec<Event>>,
         at_start: &Work,
-        mut last: Option<&mut StepPolynomial>,
     ) -> Result<f64, Error> {
         let held = self.held;
         match &mut self.core {
@@ -411,8 +405,8 @@ impl Oscillator {
                     } else {
                         t0 + self.max_substep
                     };
-                    if let Solver::General(Method::Rk4(_)) = solver {
-                        equations.require_rk4_stable(t1 - t0)?;
+                    if let Some(bound) = solver.stability_bound() {
+                        equations.require_stable(solver.name(), t1 - t0, bound)?;
                     }
                     let piecewise = matches!(solver, Solver::Piecewise(_));
                     if let Solver::Piecewise(dopri5) = solver {
@@ -437,8 +431,7 @@ impl Oscillator {
                             &mut largest,
                         )?,
                         _ => {
-                            let keep = last.as_deref_mut();
-                            solver.integrate(equations, (t0, t1), &mut y, &mut self.work, keep)?;
+                            solver.integrate(equations, (t0, t1), &mut y, &mut self.work)?;
                             t1
                         }
                     };
@@ -485,9 +478,9 @@ impl Oscillator {
     /// Moves the motion to `t_end` along `step`, which holds it from the motion's time on, and
     /// counts the largest |u| on the way in the period's amplitude: before the first period
     /// ends u_amplitude is max |u| so far, which the step's end ([`Ahead::largest`]) is not.
-    fn read_step(&mut self, step: &StepPolynomial, t_end: f64) {
+    fn read_step(&mut self, step: &StepAhead, t_end: f64) {
         let (t0, u0, v0) = (self.state.t, self.state.u, self.state.v);
-        let y = step.at(t_end);
+        let y = read(step, t_end);
         let mut largest = u0.abs().max(y[0].abs());
         // |u| peaks inside only where u' changes sign: there, by bisection on the polynomial
         // (sign changes of u' on it are far apart against a call's span).
@@ -498,16 +491,26 @@ impl Oscillator {
                 if middle <= a || middle >= b {
                     break;
                 }
-                if step.at(middle)[1] * v0 > 0.0 {
+                if read(step, middle)[1] * v0 > 0.0 {
                     a = middle;
                 } else {
                     b = middle;
                 }
             }
-            largest = largest.max(step.at(0.5 * (a + b))[0].abs());
+            largest = largest.max(read(step, 0.5 * (a + b))[0].abs());
         }
         self.set_motion(t_end, &y);
         self.amplitude.running = self.amplitude.running.max(largest);
+    }
+
+    /// How many numbers the steps taken ahead add to a saved state: [`AHEAD_SAVED`] and the
+    /// solver's step.
+    fn ahead_saved(&self) -> usize {
+        AHEAD_SAVED
+            + match &self.core {
+                Core::Regularized(_, Solver::General(method)) => method.step_ahead_saved(DIM),
+                _ => 0,
+            }
     }
 
     /// (t, u, u', W) from `y` = (u, u', W); W only where it is integrated.
@@ -522,65 +525,53 @@ impl Oscillator {
         }
     }
 
-    /// Where steps may be taken ahead and the step radau5 proposes holds [`CALLS_AHEAD`] calls
-    /// ending at `t_end` (not reaching past the period's `boundary`, nor longer than the last
-    /// polynomial read within the tolerance suggests): takes that step and reads the state at
-    /// `t_end` from it (true). False, with nothing changed but the work and that suggestion,
-    /// where it may not, or its last step does not hold `t_end` (a rejection or a kink cut it),
-    /// or its polynomial is not within the tolerance.
-    fn take_step_ahead(
-        &mut self,
-        t_end: f64,
-        boundary: f64,
-        at_start: &Work,
-    ) -> Result<bool, Error> {
-        let Core::Regularized(_, Solver::General(Method::Radau5(radau))) = &mut self.core else {
+    /// Where steps may be taken ahead and the solver takes one from the motion's time that
+    /// holds `t_end` (not reaching past the period's `boundary`), reads the state at `t_end`
+    /// from it (true). False, with nothing changed but the work and what the solver carries
+    /// towards its next step ahead, where it may not, or takes none.
+    fn take_step_ahead(&mut self, t_end: f64, boundary: f64) -> Result<bool, Error> {
+        let tracks = self.tracks_amplitude;
+        let Core::Regularized(equations, solver) = &mut self.core else {
             return Ok(false);
         };
-        let hints = (radau.h_next, radau.h_proposed);
-        let t = self.state.t;
-        let end = (t + hints.1.min(self.max_substep).min(self.ahead_limit)).min(boundary);
-        // Only a step that holds several calls pays for its reading and for the steps a
-        // proposal taken from a short call's last step has rejected.
-        if !self.takes_steps_ahead || end - t < CALLS_AHEAD * (t_end - t) {
+        let Solver::General(method) = solver else {
+            return Ok(false);
+        };
+        if !self.takes_steps_ahead {
             return Ok(false);
         }
-        // The step ahead is the one proposed, not the call's last cut to its span.
-        radau.h_next = end - t;
         let before = self.state;
-        let mut step = StepPolynomial::NONE;
-        let largest = self.advance(end, None, at_start, Some(&mut step))?;
-        let Core::Regularized(equations, Solver::General(Method::Radau5(radau))) = &mut self.core
-        else {
+        let t = before.t;
+        let mut y = [before.u, before.v, before.dissipated];
+        // The step holds the way to t_end too: from the call's start, or from where u' has not
+        // changed sign since (so |u| peaks only at the ends), for the amplitude so far.
+        let readable =
+            |step: &StepAhead| step.start() <= t || before.v * read(step, step.start())[1] >= 0.0;
+        let span = (t, t_end, boundary);
+        let taken = method.step_ahead(&*equations, span, &mut y, &mut self.work, None, readable)?;
+        let Some((end, step)) = taken else {
             return Ok(false);
         };
-        // The step holds t_end, and the way there: from the call's start (or from where u' has
-        // not changed sign since, so |u| peaks only at the ends), for the amplitude so far.
-        let mut readable = step.h > 0.0
-            && step.t <= t_end
-            && (step.t <= before.t || before.v * step.at(step.t)[1] >= 0.0);
-        if readable {
-            let error = step.interior_error(&*equations, radau, &mut self.work);
-            self.ahead_limit = step.h * (0.9 * error.max(1e-10).powf(-0.25)).clamp(0.2, 4.0);
-            readable = error <= 1.0;
+        let mut largest = before.u.abs();
+        if tracks && before.v * y[1] < 0.0 {
+            // u' changed sign inside the step: where |u| peaks, searched from its start.
+            let mut probe = solver.clone();
+            probe.set_step_hint(end - t);
+            let from = (t, [before.u, before.v, before.dissipated]);
+            let extreme = turning_point(equations, probe, from, (end, y), &mut self.work)?;
+            largest = largest.max(extreme.abs());
         }
-        if !readable {
-            (radau.h_next, radau.h_proposed) = hints;
-            self.state = before;
-            return Ok(false);
-        }
-        let s = self.state;
+        largest = largest.max(y[0].abs());
         self.ahead = Some(Ahead {
             step,
-            end: [s.t, s.u, s.v, s.dissipated],
+            end: [end, y[0], y[1], y[2]],
             largest,
         });
         // From the step's start: before it, if there is a before, |u| grew or shrank monotonically.
-        self.state = before;
-        if step.t > before.t {
-            let y = step.at(step.t);
+        if step.start() > t {
+            let y = read(&step, step.start());
             self.amplitude.running = self.amplitude.running.max(y[0].abs());
-            self.set_motion(step.t, &y);
+            self.set_motion(step.start(), &y);
         }
         self.read_step(&step, t_end);
         Ok(true)
@@ -614,10 +605,10 @@ impl Oscillator {
                 } else {
                     t_end
                 };
-            if segment_end == t_end && self.take_step_ahead(t_end, boundary, &at_start)? {
+            if segment_end == t_end && self.take_step_ahead(t_end, boundary)? {
                 break;
             }
-            let largest = self.advance(segment_end, log.as_deref_mut(), &at_start, None)?;
+            let largest = self.advance(segment_end, log.as_deref_mut(), &at_start)?;
             self.state.t = segment_end;
             self.amplitude.add(largest, segment_end, self.state.u.abs());
         }
@@ -772,7 +763,7 @@ fn turning_point(
         }
         let mut probe = solver_lo.clone();
         let mut y = y_lo;
-        probe.integrate(equations, (lo, t), &mut y, work, None)?;
+        probe.integrate(equations, (lo, t), &mut y, work)?;
         best = y[0];
         let slope = (v_hi - v_lo) / (hi - lo);
         if y[1] * y[1] <= 0.2 * atol * slope.abs() || hi - lo <= 4.0 * f64::EPSILON * t.abs() {
@@ -883,31 +874,39 @@ impl Simulation for Oscillator {
             step_hint,
             self.state.dissipated,
         ]);
-        let proposed = match &self.core {
-            Core::Regularized(_, Solver::General(Method::Radau5(radau))) => radau.h_proposed,
-            _ => 0.0,
-        };
-        out.extend_from_slice(&[proposed, self.ahead_limit]);
+        match &self.core {
+            Core::Regularized(_, Solver::General(method)) => method.save_ahead_hints(out),
+            _ => out.extend_from_slice(&[0.0; AHEAD_HINTS]),
+        }
         match &self.ahead {
             Some(ahead) => {
                 out.push(1.0);
-                ahead.step.write(3, out);
+                ahead.step.write(DIM, out);
                 out.extend_from_slice(&ahead.end);
                 out.push(ahead.largest);
             }
-            None => out.resize(STATE_SAVED + AHEAD_SAVED, 0.0),
+            None => out.resize(STATE_SAVED + self.ahead_saved(), 0.0),
         }
     }
 
     fn restore(&mut self, state: &[f64]) -> Result<(), Error> {
-        super::check_saved(TABLE.model_identifier, state, STATE_SAVED + AHEAD_SAVED)?;
-        let (proposed, ahead_limit) = (state[STATE_SAVED], state[STATE_SAVED + 1]);
-        let ahead = &state[STATE_SAVED + 2..];
+        super::check_saved(
+            TABLE.model_identifier,
+            state,
+            STATE_SAVED + self.ahead_saved(),
+        )?;
+        let (hints, ahead) = state[STATE_SAVED..].split_at(AHEAD_HINTS);
         let ahead = match ahead[0] {
             0.0 => None,
             _ => {
-                let (step, rest) = ahead[1..].split_at(StepPolynomial::saved_len(3));
-                let step = StepPolynomial::read(3, step).filter(|_| self.takes_steps_ahead);
+                let method = match &self.core {
+                    Core::Regularized(_, Solver::General(method)) if self.takes_steps_ahead => {
+                        Some(method)
+                    }
+                    _ => None,
+                };
+                let (step, rest) = ahead[1..].split_at(self.ahead_saved() - AHEAD_SAVED);
+                let step = method.and_then(|m| m.restore_step_ahead(DIM, step));
                 let Some(step) = step else {
                     return Err(Error::state(
                         format!(
@@ -939,12 +938,11 @@ impl Simulation for Oscillator {
                 self.amplitude.last = state[7];
                 if let Core::Regularized(_, solver) = &mut self.core {
                     solver.set_step_hint(state[8]);
-                    if let Solver::General(Method::Radau5(radau)) = solver {
-                        radau.h_proposed = proposed;
+                    if let Solver::General(method) = solver {
+                        method.restore_ahead_hints(hints);
                     }
                 }
                 self.ahead = ahead;
-                self.ahead_limit = ahead_limit;
                 Ok(())
             }
             None => Err(Error::state(
@@ -953,6 +951,13 @@ impl Simulation for Oscillator {
             )),
         }
     }
+}
+
+/// The states `step` holds at `t`.
+fn read(step: &StepAhead, t: f64) -> [f64; MAX_DIM] {
+    let mut y = [0.0; MAX_DIM];
+    step.at(t, &mut y);
+    y
 }
 
 /// Runs a simulation from rest for `periods` forcing periods in steps of 1/50 period and returns

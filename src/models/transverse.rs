@@ -41,7 +41,7 @@ use super::{
 use crate::error::{Error, Failure};
 use crate::friction::lugre2d::{LuGre2d, SlipLaw};
 use crate::models::transverse::table::vr;
-use crate::solve::rk4::Rk4;
+use crate::solve::method::Method;
 use crate::solve::shooting::{self, NoOrbit};
 use crate::solve::stepping::Stepping;
 use crate::solve::switching::Switching;
@@ -472,10 +472,8 @@ impl Transverse {
         let eq: &dyn Switching = if self.trim.axial { &axial } else { &planar };
         match &mut self.solver {
             Solver::General(_) if round_off => {
-                let mut rk = Rk4 {
-                    h_max: f64::INFINITY,
-                };
-                rk.integrate(eq, t0, t1, &mut self.y, &mut self.work)?;
+                let mut step = Method::across_round_off();
+                step.integrate(eq, t0, t1, &mut self.y, &mut self.work)?;
             }
             // On the equations' own types rather than through `eq`: the contact then inlines
             // into the right-hand side, and the step takes fewer instructions
@@ -646,7 +644,7 @@ impl Simulation for Transverse {
         // The step taken ahead, if any (a flag first).
         let ahead = match state.get(solver) {
             _ if !self.saves_ahead() => 0,
-            Some(1.0) => 1 + ahead::SAVED,
+            Some(1.0) => 1 + self.ahead_saved(),
             _ => 1,
         };
         super::check_saved(

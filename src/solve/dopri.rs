@@ -16,11 +16,12 @@
 
 mod ahead;
 
-pub use ahead::{Carry, StepAhead, CARRY_SAVED, SAVED_LEN as STEP_AHEAD_SAVED};
+pub use ahead::{Carry, Quintic, CARRY_SAVED, SAVED_LEN as QUINTIC_SAVED};
 
 use super::failures;
 use super::narrow::{Narrow, Verdict, Watch};
-use super::stepping::Stepping;
+use super::step_ahead;
+use super::stepping::{StepAhead, Stepping};
 use super::stiffness::StiffnessTest;
 use super::switching::{crossed, Smooth, Switching, MAX_SWITCHES};
 use super::{Integrator, Ode, Work, MAX_DIM};
@@ -82,6 +83,8 @@ pub struct Dopri5 {
     pub h: f64,
     /// Give up (with an error) after this many steps in one call.
     pub max_steps: u64,
+    /// Whether it takes steps ahead when a model asks ([`Stepping::step_ahead`]).
+    pub steps_ahead: bool,
     /// Whether stability rather than the tolerance holds the step ([`Dopri5::stiff_since`]).
     stiffness: StiffnessTest,
 }
@@ -328,7 +331,7 @@ impl Dense {
 }
 
 /// A step's dense output read at a fraction of the step: contd5's ([`Dense`]), or the quintic
-/// of a step taken ahead ([`StepAhead`]), which foretells a kink after it.
+/// of a step taken ahead ([`Quintic`]), which foretells a kink after it.
 trait Reading {
     fn read(&self, theta: f64, len: usize, out: &mut [f64; MAX_DIM]);
 }
@@ -339,7 +342,7 @@ impl Reading for Dense {
     }
 }
 
-impl Reading for &StepAhead {
+impl Reading for &Quintic {
     fn read(&self, theta: f64, len: usize, out: &mut [f64; MAX_DIM]) {
         self.at_theta(theta, len, out);
     }
@@ -363,11 +366,11 @@ fn stage_factors(x: f64) -> [f64; 7] {
 
 /// A run that stops at the end of the first accepted step reaching `past`, holding the step
 /// and what the next may go on with in `slot`; it goes on `from` the last step taken ahead,
-/// where given ([`Dopri5::step_ahead`]).
+/// where given ([`Dopri5::run_ahead`]).
 struct AheadRun<'a> {
     past: f64,
-    from: Option<(&'a Carry, &'a StepAhead)>,
-    slot: &'a mut Option<(StepAhead, Carry)>,
+    from: Option<(&'a Carry, &'a Quintic)>,
+    slot: &'a mut Option<(Quintic, Carry)>,
 }
 
 /// Where a run stops, short of an error.
@@ -387,7 +390,7 @@ struct Carried<'a> {
     t_prev: f64,
     h_prev: f64,
     sw_prev: [f64; MAX_SWITCHES],
-    step: &'a StepAhead,
+    step: &'a Quintic,
 }
 
 impl Dopri5 {
@@ -398,6 +401,7 @@ impl Dopri5 {
             h_max,
             h: 0.0,
             max_steps: super::MAX_STEPS_PER_DO_STEP,
+            steps_ahead: false,
             stiffness: StiffnessTest::default(),
         }
     }
@@ -738,16 +742,16 @@ impl Dopri5 {
     /// ahead and what it left, where this one starts at its end (`y` its end state, `t0` its
     /// end in this run's time): its last stage is then the first, and it foretells a kink.
     /// Leaves `y` at that step's end and returns the end (`t1` itself where the step reached
-    /// it), the step, to be read inside to its order ([`StepAhead`]; two right-hand sides
+    /// it), the step, to be read inside to its order ([`Quintic`]; two right-hand sides
     /// more), and what the next step ahead may go on with.
-    pub fn step_ahead<S: Switching + ?Sized>(
+    fn run_ahead<S: Switching + ?Sized>(
         &mut self,
         ode: &S,
         (t0, past, t1): (f64, f64, f64),
         y: &mut [f64],
         work: &mut Work,
-        from: Option<(&Carry, &StepAhead)>,
-    ) -> Result<(f64, StepAhead, Carry), Error> {
+        from: Option<(&Carry, &Quintic)>,
+    ) -> Result<(f64, Quintic, Carry), Error> {
         let mut slot = None;
         let end = if t1 > t0 {
             let ahead = AheadRun {
@@ -1085,7 +1089,7 @@ impl Dopri5 {
             }
             if let Stop::Ahead(a) = &mut stop {
                 if t >= a.past {
-                    let step = StepAhead::new(ode, (t_start, &y_start[..n]), &tr, h_taken, work);
+                    let step = Quintic::new(ode, (t_start, &y_start[..n]), &tr, h_taken, work);
                     let carry = Carry {
                         end: t,
                         k1,
@@ -1180,7 +1184,48 @@ impl Stepping for Dopri5 {
     ) -> Result<(), Error> {
         self.integrate_switched(ode, t0, t1, y, work)
     }
+    fn takes_steps_ahead(&self) -> bool {
+        self.steps_ahead
+    }
+    fn step_ahead<S: Switching>(
+        &mut self,
+        ode: &S,
+        (t, t_end, reach): (f64, f64, f64),
+        y: &mut [f64],
+        work: &mut Work,
+        behind: Option<&StepAhead>,
+        readable: impl Fn(&StepAhead) -> bool,
+    ) -> Result<Option<(f64, StepAhead)>, Error> {
+        if !self.steps_ahead || self.h.min(self.h_max).min(reach - t) < CALLS_AHEAD * (t_end - t) {
+            return Ok(None);
+        }
+        let from = match behind {
+            Some(StepAhead::Dopri5(step, carry)) => Some((carry, step)),
+            _ => None,
+        };
+        let n = y.len().min(MAX_DIM);
+        let (solver, mut start) = (*self, [0.0; MAX_DIM]);
+        start[..n].copy_from_slice(&y[..n]);
+        let (end, step, carry) = self.run_ahead(ode, (t, t_end, reach), y, work, from)?;
+        let step = StepAhead::Dopri5(step, carry);
+        if !readable(&step) {
+            *self = solver;
+            y[..n].copy_from_slice(&start[..n]);
+            return Ok(None);
+        }
+        Ok(Some((end, step)))
+    }
+    fn step_ahead_saved(&self, _dim: usize) -> usize {
+        step_ahead::DOPRI5_SAVED
+    }
+    fn restore_step_ahead(&self, _dim: usize, saved: &[f64]) -> Option<StepAhead> {
+        step_ahead::read_dopri5(saved)
+    }
 }
+
+/// The fewest calls a step taken ahead must hold: reading it costs two right-hand sides more
+/// ([`Quintic`]), where each call cut to its span takes a step of seven.
+const CALLS_AHEAD: f64 = 2.0;
 
 impl Integrator for Dopri5 {
     fn integrate(

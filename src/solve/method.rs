@@ -7,7 +7,7 @@ use super::dop853::Dop853;
 use super::dopri::Dopri5;
 use super::radau::Radau5;
 use super::rk4::Rk4;
-use super::stepping::Stepping;
+use super::stepping::{StepAhead, Stepping};
 use super::switching::Switching;
 use super::{Integrator, Ode, Work};
 use crate::error::Error;
@@ -18,6 +18,16 @@ pub enum Method {
     Radau5(Radau5),
     Dop853(Dop853),
     Rk4(Rk4),
+}
+
+impl Method {
+    /// One explicit step across an interval within the round-off of the absolute time, where
+    /// an adaptive solver would take the interval for a real one and refine it.
+    pub fn across_round_off() -> Method {
+        Method::Rk4(Rk4 {
+            h_max: f64::INFINITY,
+        })
+    }
 }
 
 /// `$body` with `$s` bound to the solver inside `$method`, whichever it is.
@@ -61,6 +71,42 @@ impl Stepping for Method {
         work: &mut Work,
     ) -> Result<(), Error> {
         each!(self, s => s.advance(ode, span, y, work))
+    }
+
+    fn takes_steps_ahead(&self) -> bool {
+        each!(self, s => s.takes_steps_ahead())
+    }
+
+    fn step_ahead<S: Switching>(
+        &mut self,
+        ode: &S,
+        span: (f64, f64, f64),
+        y: &mut [f64],
+        work: &mut Work,
+        behind: Option<&StepAhead>,
+        readable: impl Fn(&StepAhead) -> bool,
+    ) -> Result<Option<(f64, StepAhead)>, Error> {
+        each!(self, s => s.step_ahead(ode, span, y, work, behind, readable))
+    }
+
+    fn step_ahead_saved(&self, dim: usize) -> usize {
+        each!(self, s => s.step_ahead_saved(dim))
+    }
+
+    fn restore_step_ahead(&self, dim: usize, saved: &[f64]) -> Option<StepAhead> {
+        each!(self, s => s.restore_step_ahead(dim, saved))
+    }
+
+    fn save_ahead_hints(&self, out: &mut Vec<f64>) {
+        each!(self, s => s.save_ahead_hints(out))
+    }
+
+    fn restore_ahead_hints(&mut self, saved: &[f64]) {
+        each!(self, s => s.restore_ahead_hints(saved))
+    }
+
+    fn stability_bound(&self) -> Option<f64> {
+        each!(self, s => s.stability_bound())
     }
 }
 

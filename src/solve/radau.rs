@@ -22,7 +22,7 @@
 use super::dense::{lu_factor, lu_solve};
 use super::failures;
 use super::narrow::{Verdict, Watch};
-use super::stepping::Stepping;
+use super::stepping::{StepAhead, Stepping};
 use super::switching::{Switching, MAX_SWITCHES};
 use super::{Integrator, Ode, Work, MAX_DIM};
 use crate::error::{Error, Failure};
@@ -75,6 +75,11 @@ pub struct Radau5 {
     pub h_proposed: f64,
     /// The most steps (accepted or rejected) one call may take before giving up.
     pub max_steps: u64,
+    /// Whether it takes steps ahead when a model asks ([`Stepping::step_ahead`]).
+    pub steps_ahead: bool,
+    /// The longest step to take ahead: one whose polynomial is read within the tolerance
+    /// ([`StepPolynomial::interior_error`]), as the last one taken shows.
+    pub ahead_limit: f64,
 }
 
 /// One accepted step's collocation polynomial: through `y` at `t` and `y + z_s` at the nodes
@@ -99,6 +104,11 @@ impl StepPolynomial {
         y: [0.0; MAX_DIM],
         z: [0.0; N3],
     };
+
+    /// How many states the polynomial holds.
+    pub fn n(&self) -> usize {
+        self.n
+    }
 
     /// The state at `t` (inside the step).
     pub fn at(&self, t: f64) -> [f64; MAX_DIM] {
@@ -184,6 +194,8 @@ impl Radau5 {
             // fit in the work one communication step may take (see
             // MAX_RHS_EVALUATIONS_PER_DO_STEP).
             max_steps: super::MAX_STEPS_PER_DO_STEP / 4,
+            steps_ahead: false,
+            ahead_limit: f64::MAX,
         }
     }
 }
@@ -565,7 +577,62 @@ impl Stepping for Radau5 {
     ) -> Result<(), Error> {
         self.integrate_switched(ode, t0, t1, y, work)
     }
+    fn takes_steps_ahead(&self) -> bool {
+        self.steps_ahead
+    }
+    /// Takes the step proposed, not the call's last cut to its span; it is read inside when
+    /// it holds `t_end` and its polynomial is within the tolerance there.
+    fn step_ahead<S: Switching>(
+        &mut self,
+        ode: &S,
+        (t, t_end, reach): (f64, f64, f64),
+        y: &mut [f64],
+        work: &mut Work,
+        _behind: Option<&StepAhead>,
+        readable: impl Fn(&StepAhead) -> bool,
+    ) -> Result<Option<(f64, StepAhead)>, Error> {
+        let hints = (self.h_next, self.h_proposed);
+        let end = (t + hints.1.min(self.h_max).min(self.ahead_limit)).min(reach);
+        if !self.steps_ahead || end - t < CALLS_AHEAD * (t_end - t) {
+            return Ok(None);
+        }
+        let n = y.len().min(MAX_DIM);
+        let mut start = [0.0; MAX_DIM];
+        start[..n].copy_from_slice(&y[..n]);
+        self.h_next = end - t;
+        let mut step = StepPolynomial::NONE;
+        self.integrate_switched_keeping(ode, (t, end), y, work, &mut step)?;
+        let ahead = StepAhead::Radau5(step);
+        let mut holds = step.h > 0.0 && step.t <= t_end && readable(&ahead);
+        if holds {
+            let error = step.interior_error(ode, self, work);
+            self.ahead_limit = step.h * (0.9 * error.max(1e-10).powf(-0.25)).clamp(0.2, 4.0);
+            holds = error <= 1.0;
+        }
+        if !holds {
+            (self.h_next, self.h_proposed) = hints;
+            y[..n].copy_from_slice(&start[..n]);
+            return Ok(None);
+        }
+        Ok(Some((end, ahead)))
+    }
+    fn step_ahead_saved(&self, dim: usize) -> usize {
+        StepPolynomial::saved_len(dim)
+    }
+    fn restore_step_ahead(&self, dim: usize, saved: &[f64]) -> Option<StepAhead> {
+        StepPolynomial::read(dim, saved).map(StepAhead::Radau5)
+    }
+    fn save_ahead_hints(&self, out: &mut Vec<f64>) {
+        out.extend_from_slice(&[self.h_proposed, self.ahead_limit]);
+    }
+    fn restore_ahead_hints(&mut self, saved: &[f64]) {
+        (self.h_proposed, self.ahead_limit) = (saved[0], saved[1]);
+    }
 }
+
+/// The fewest calls a step taken ahead must hold: only such a step pays for its reading and
+/// for the steps a proposal taken from a short call's last step has rejected.
+const CALLS_AHEAD: f64 = 4.0;
 
 impl Integrator for Radau5 {
     fn integrate(
@@ -640,7 +707,7 @@ impl Radau5 {
 
     /// [`Radau5::integrate_switched`], leaving the last step it accepts in `last` (`h` = 0
     /// if it accepts none).
-    pub fn integrate_switched_keeping(
+    fn integrate_switched_keeping(
         &mut self,
         ode: &dyn Switching,
         (t0, t1): (f64, f64),

@@ -4,6 +4,8 @@
 
 use crate::error::{Error, Failure};
 use crate::friction::regularized::Regularized;
+#[cfg(doc)]
+use crate::solve::stepping::Stepping;
 use crate::solve::switching::{Switching, MAX_SWITCHES};
 use crate::solve::Ode;
 
@@ -46,14 +48,14 @@ pub struct Equations {
 }
 
 impl Equations {
-    /// rk4 blows up (through many steps of finite nonsense) where h times an eigenvalue of the
-    /// linear part `m u'' + (c + C) u' + k u` leaves its stability region, which lies within
-    /// |h lambda| < 3 (2.96 at most). C is the friction law's steepest slope, at u' = 0: it acts
-    /// only while |u'| < D, but a motion that sticks there, or crosses it in a step or two,
-    /// then gains energy at every step (the regression test
-    /// `rk4_refuses_a_step_the_friction_slope_makes_unstable` in `oscillator/tests.rs` holds
-    /// such a case).
-    pub fn require_rk4_stable(&self, h: f64) -> Result<(), Error> {
+    /// A fixed-step solver (rk4) blows up (through many steps of finite nonsense) where h times
+    /// an eigenvalue of the linear part `m u'' + (c + C) u' + k u` leaves its stability region,
+    /// which lies within |h lambda| < `bound` ([`Stepping::stability_bound`]). C is the friction
+    /// law's steepest slope, at u' = 0: it acts only while |u'| < D, but a motion that sticks
+    /// there, or crosses it in a step or two, then gains energy at every step (the regression
+    /// test `rk4_refuses_a_step_the_friction_slope_makes_unstable` in `oscillator/tests.rs`
+    /// holds such a case).
+    pub fn require_stable(&self, solver: &'static str, h: f64, bound: f64) -> Result<(), Error> {
         let Forced { m, c, k, .. } = self.plant;
         let slope = self.law.eval(0.0).1.max(0.0);
         let damping = c + slope;
@@ -63,13 +65,13 @@ impl Equations {
         } else {
             (k / m).sqrt()
         };
-        if h * rate <= 3.0 {
+        if h * rate <= bound {
             Ok(())
         } else {
             Err(Error::step(
-                "rk4",
+                solver,
                 Failure::BeyondStability,
-                format!("the step {h:e} s is beyond its stability bound 3/{rate:e} s set by m, c, k and the friction slope {slope:e} N.s/m at u' = 0"),
+                format!("the step {h:e} s is beyond its stability bound {bound}/{rate:e} s set by m, c, k and the friction slope {slope:e} N.s/m at u' = 0"),
                 "a step within it: more steps_per_period (or the radau5 solver)",
             ))
         }

@@ -8,7 +8,7 @@ use super::Equations;
 use crate::error::Error;
 use crate::solve::dopri::Dopri5;
 use crate::solve::method::Method;
-use crate::solve::radau::{Radau5, StepPolynomial};
+use crate::solve::radau::Radau5;
 use crate::solve::rk4::Rk4;
 use crate::solve::stepping::Stepping;
 use crate::solve::{Work, MAX_DIM};
@@ -41,6 +41,9 @@ impl Solver {
             OscillatorSolver::Radau5 => {
                 let mut radau = Radau5::new(rtol, atol, h_max);
                 radau.atol_scale[2] = f64::INFINITY;
+                // Its steps are long against short communication steps, and read inside to
+                // the tolerance.
+                radau.steps_ahead = true;
                 Solver::General(Method::Radau5(radau))
             }
         }
@@ -79,6 +82,14 @@ impl Solver {
         }
     }
 
+    /// The stability bound of a fixed-step solver ([`Stepping::stability_bound`]).
+    pub fn stability_bound(&self) -> Option<f64> {
+        match self {
+            Solver::General(m) => m.stability_bound(),
+            Solver::Piecewise(_) => None,
+        }
+    }
+
     /// Where dopri5 found the problem stiff, once; radau5 and rk4 never say.
     pub fn stiff_since(&mut self) -> Option<f64> {
         match self {
@@ -87,29 +98,17 @@ impl Solver {
         }
     }
 
-    /// Advances `y` from `t0` to `t1`; with `last`, radau5 leaves its last accepted step there
-    /// (`h` = 0 for the other solvers, or if none was accepted).
+    /// Advances `y` from `t0` to `t1`.
     pub fn integrate(
         &mut self,
         equations: &Equations,
         (t0, t1): (f64, f64),
         y: &mut [f64],
         work: &mut Work,
-        last: Option<&mut StepPolynomial>,
     ) -> Result<(), Error> {
-        match (self, last) {
-            (Solver::General(Method::Radau5(r)), Some(last)) => {
-                r.integrate_switched_keeping(equations, (t0, t1), y, work, last)
-            }
-            (solver, last) => {
-                if let Some(last) = last {
-                    last.h = 0.0;
-                }
-                match solver {
-                    Solver::General(m) => m.advance(equations, (t0, t1), y, work),
-                    Solver::Piecewise(d) => d.integrate_switched(equations, t0, t1, y, work),
-                }
-            }
+        match self {
+            Solver::General(m) => m.advance(equations, (t0, t1), y, work),
+            Solver::Piecewise(d) => d.integrate_switched(equations, t0, t1, y, work),
         }
     }
 }

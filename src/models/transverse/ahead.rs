@@ -1,10 +1,9 @@
 //! Steps taken past the communication point. Where the master's steps are much shorter than
-//! dopri5's (a microsecond against its few at the default tolerance), a call takes the step
-//! dopri5 proposes whole, past its end, and reads the state at the point from the step's
-//! interpolant of the step's own order ([`StepAhead`]); the calls that follow inside the step
-//! read it too, instead of each taking a step of its own, cut to the call. Only while the drive
-//! is prescribed: an input may change at every call, and the step would no longer be the
-//! motion's. A call that ends inside the step only moves the clock: the state there, and the
+//! the solver's (a microsecond against dopri5's few at the default tolerance), a call takes the
+//! step the solver proposes whole, past its end, and reads the state at the point from the
+//! step ([`StepAhead`]); the calls that follow inside the step read it too, instead of each
+//! taking a step of its own, cut to the call. Only while the drive is prescribed: an input may
+//! change at every call, and the step would no longer be the motion's. A call that ends inside the step only moves the clock: the state there, and the
 //! force integral the period's mean adds, are read from the interpolant when something asks
 //! for them ([`Transverse::state`], [`Transverse::mean_now`]), and the mean takes the step's
 //! whole integral at its end.
@@ -13,12 +12,11 @@ use super::{axial, Drive, Equations, Solver, Transverse, Q};
 use crate::error::Error;
 use crate::models::period_mean::PeriodMean;
 use crate::models::ramp::Ramp;
-use crate::solve::dopri::{Carry, StepAhead, CARRY_SAVED, STEP_AHEAD_SAVED};
-use crate::solve::method::Method;
-use crate::solve::stepping::CallEnd;
+use crate::solve::stepping::{CallEnd, StepAhead, Stepping};
 use crate::solve::MAX_DIM;
 
-/// A dopri5 step taken past the communication point, with where the integration goes on from.
+/// A solver's step taken past the communication point, with where the integration goes on
+/// from.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Ahead {
     step: StepAhead,
@@ -27,22 +25,23 @@ pub(super) struct Ahead {
     /// The absolute time of its end, and the state there.
     end: f64,
     y_end: [f64; MAX_DIM],
-    /// What the next step taken ahead, from this one's end, goes on with.
-    carry: Carry,
 }
 
-/// The fewest communication steps a step taken ahead must hold: reading costs its two
-/// right-hand sides more, where each call cut to its span takes a step of seven.
-const CALLS_AHEAD: f64 = 2.0;
-
-/// How many numbers a step taken ahead adds to a saved state, after a flag.
-pub(super) const SAVED: usize = 2 + MAX_DIM + STEP_AHEAD_SAVED + CARRY_SAVED;
-
 impl Transverse {
-    /// Whether calls may read steps taken ahead: dopri5, with the drive prescribed.
+    /// Whether calls may read steps taken ahead: the solver takes them, and the drive is
+    /// prescribed.
     pub(super) fn takes_steps_ahead(&self) -> bool {
-        matches!(self.solver, Solver::General(Method::Dopri5(_)))
+        matches!(&self.solver, Solver::General(m) if m.takes_steps_ahead())
             && matches!(self.drive, Drive::Prescribed(_))
+    }
+
+    /// How many numbers a step taken ahead adds to a saved state, after a flag.
+    pub(super) fn ahead_saved(&self) -> usize {
+        2 + MAX_DIM
+            + match &self.solver {
+                Solver::General(m) => m.step_ahead_saved(MAX_DIM),
+                _ => 0,
+            }
     }
 
     /// The step taken ahead whose interpolant holds the state now: the one `self.t` lies in,
@@ -115,11 +114,11 @@ impl Transverse {
         true
     }
 
-    /// Where steps may be taken ahead and dopri5's proposed step from `t` holds
-    /// [`CALLS_AHEAD`] calls ending at `t_end`, takes that step (not past the period's
-    /// `boundary`, when the mean is read) and holds it for [`Transverse::read_step_ahead`] (true);
-    /// it goes on from `behind`, the last step taken ahead, where that ended at `t`. False,
-    /// with nothing changed, where it may not.
+    /// Where steps may be taken ahead and the solver takes one from `t` that holds `t_end`
+    /// (not past the period's `boundary`, when the mean is read), holds it for
+    /// [`Transverse::read_step_ahead`] (true); it goes on from `behind`, the last step taken
+    /// ahead, where that ended at `t`. False, with nothing changed but the work, where it may
+    /// not.
     pub(super) fn take_step_ahead(
         &mut self,
         (t, t_end, boundary): (f64, f64, f64),
@@ -129,16 +128,13 @@ impl Transverse {
             return Ok(false);
         };
         let points = self.band_points;
-        let Solver::General(Method::Dopri5(d)) = &mut self.solver else {
+        let Solver::General(method) = &mut self.solver else {
             return Ok(false);
         };
         let reach = (boundary - t).min(1.0 / self.p.f);
-        if d.h.min(d.h_max).min(reach) < CALLS_AHEAD * (t_end - t) {
-            return Ok(false);
-        }
         // Going on from the last step taken ahead, where it ended.
         let behind = behind.filter(|b| b.end == t);
-        let from = behind.as_ref().map(|b| (&b.carry, &b.step));
+        let from = behind.as_ref().map(|b| &b.step);
         // The equations count time from the step's start.
         let mut p = self.p;
         p.set_time(t);
@@ -146,20 +142,24 @@ impl Transverse {
             value: vd,
             rate: 0.0,
         };
+        let q = self.y[Q];
         self.y[Q] = 0.0;
-        let (end, step, carry) = if self.trim.axial {
+        let span = (0.0, t_end - t, reach);
+        let taken = if self.trim.axial {
             let axial = axial::Axial {
                 p: &p,
                 vd,
                 dim: self.trim.dim(),
                 band_points: points,
             };
-            let span = (0.0, t_end - t, reach);
-            d.step_ahead(&axial, span, &mut self.y, &mut self.work, from)?
+            method.step_ahead(&axial, span, &mut self.y, &mut self.work, from, |_| true)?
         } else {
             let planar = Equations::new(&p, vd, points);
-            let span = (0.0, t_end - t, reach);
-            d.step_ahead(&planar, span, &mut self.y, &mut self.work, from)?
+            method.step_ahead(&planar, span, &mut self.y, &mut self.work, from, |_| true)?
+        };
+        let Some((end, step)) = taken else {
+            self.y[Q] = q;
+            return Ok(false);
         };
         // A step that reached the period's boundary ends on it, to the bit.
         let end_time = if end == boundary - t {
@@ -175,29 +175,25 @@ impl Transverse {
             origin: t,
             end: end_time,
             y_end: self.y,
-            carry,
         });
         Ok(true)
     }
 
     /// Whether a saved state holds a step taken ahead (a flag, and the step if there is one):
-    /// with dopri5, and radau5 (always none), whose states were laid out so before dop853 came.
+    /// with a solver that can take them.
     pub(super) fn saves_ahead(&self) -> bool {
-        matches!(
-            self.solver,
-            Solver::General(Method::Dopri5(_) | Method::Radau5(_))
-        )
+        matches!(&self.solver, Solver::General(m) if m.step_ahead_saved(MAX_DIM) > 0)
     }
 
-    /// Appends the step taken ahead to a saved state: a flag, then [`SAVED`] numbers.
+    /// Appends the step taken ahead to a saved state: a flag, then
+    /// [`Transverse::ahead_saved`] numbers.
     pub(super) fn save_ahead(&self, out: &mut Vec<f64>) {
         match &self.ahead {
             None => out.push(0.0),
             Some(a) => {
                 out.extend_from_slice(&[1.0, a.origin, a.end]);
                 out.extend_from_slice(&a.y_end);
-                a.step.write(out);
-                a.carry.write(out);
+                a.step.write(MAX_DIM, out);
             }
         }
     }
@@ -210,21 +206,26 @@ impl Transverse {
                 "a step taken ahead this simulation's solver takes, or none",
             )
         };
+        let Solver::General(method) = &self.solver else {
+            return Err(refused());
+        };
         self.ahead = match saved {
             [flag] if *flag == 0.0 => None,
             [flag, origin, end, rest @ ..]
-                if *flag == 1.0 && rest.len() == SAVED - 2 && self.takes_steps_ahead() =>
+                if *flag == 1.0
+                    && rest.len() == self.ahead_saved() - 2
+                    && self.takes_steps_ahead() =>
             {
-                let (y, rest) = rest.split_at(MAX_DIM);
-                let (step, carry) = rest.split_at(STEP_AHEAD_SAVED);
+                let (y, step) = rest.split_at(MAX_DIM);
                 let mut y_end = [0.0; MAX_DIM];
                 y_end.copy_from_slice(y);
                 Some(Ahead {
-                    step: StepAhead::read(step).ok_or_else(refused)?,
+                    step: method
+                        .restore_step_ahead(MAX_DIM, step)
+                        .ok_or_else(refused)?,
                     origin: *origin,
                     end: *end,
                     y_end,
-                    carry: Carry::read(carry).ok_or_else(refused)?,
                 })
             }
             _ => return Err(refused()),

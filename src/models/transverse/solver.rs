@@ -149,7 +149,11 @@ impl Solver {
                 } else if name == TransverseSolver::Dop853 {
                     Method::Dop853(Dop853::new(rtol, scale.map(|s| rtol * s), 0.05 / f))
                 } else {
-                    Method::Dopri5(Dopri5::new(rtol, scale.map(|s| rtol * s), 0.05 / f))
+                    let mut dopri5 = Dopri5::new(rtol, scale.map(|s| rtol * s), 0.05 / f);
+                    // Its steps are long against a master's short communication steps, and
+                    // read inside to their own order.
+                    dopri5.steps_ahead = true;
+                    Method::Dopri5(dopri5)
                 })
             }
         }

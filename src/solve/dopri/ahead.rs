@@ -27,7 +27,7 @@ const WEIGHTS: [[f64; 5]; 5] = [
 
 /// One accepted dopri5 step, read at any point inside it to the step's order.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct StepAhead {
+pub struct Quintic {
     /// The step's start and length, in the equations' time.
     pub t: f64,
     pub h: f64,
@@ -90,10 +90,10 @@ impl Carry {
     }
 }
 
-/// How many numbers [`StepAhead::write`] writes.
+/// How many numbers [`Quintic::write`] writes.
 pub const SAVED_LEN: usize = 5 + 6 * MAX_DIM + 2 * MAX_DECAYING;
 
-impl StepAhead {
+impl Quintic {
     /// The interpolant of the accepted trial `tr` of length `h` from `(t, y)`: two right-hand
     /// sides more, counted in `work`.
     pub(super) fn new<S: Switching + ?Sized>(
@@ -142,7 +142,7 @@ impl StepAhead {
                 row[j] = weights.iter().zip(&data).map(|(w, d)| w * d).sum();
             }
         }
-        StepAhead {
+        Quintic {
             t,
             h,
             n,
@@ -181,7 +181,7 @@ impl StepAhead {
         }
     }
 
-    /// Appends [`SAVED_LEN`] numbers that [`StepAhead::read`] takes back to the same bits.
+    /// Appends [`SAVED_LEN`] numbers that [`Quintic::read`] takes back to the same bits.
     pub fn write(&self, out: &mut Vec<f64>) {
         out.extend_from_slice(&[self.t, self.h, self.n as f64, self.sigma_h]);
         out.push(self.decaying.len as f64);
@@ -192,7 +192,7 @@ impl StepAhead {
         out.extend_from_slice(&self.shift);
     }
 
-    /// The step [`StepAhead::write`] wrote; None where the numbers cannot be one.
+    /// The step [`Quintic::write`] wrote; None where the numbers cannot be one.
     pub fn read(saved: &[f64]) -> Option<Self> {
         if saved.len() != SAVED_LEN {
             return None;
@@ -214,7 +214,7 @@ impl StepAhead {
         decaying.len = len;
         let mut shift = [0.0; MAX_DECAYING];
         shift.copy_from_slice(&rest[MAX_DECAYING..]);
-        let step = StepAhead {
+        let step = Quintic {
             t: saved[0],
             h: saved[1],
             n,
@@ -244,7 +244,7 @@ mod tests {
         let mut y = [0.0; MAX_DIM];
         y[..n].copy_from_slice(y0);
         let (end, step, _) = d
-            .step_ahead(
+            .run_ahead(
                 ode,
                 (t0, t0 + h, t0 + h),
                 &mut y,
@@ -291,14 +291,14 @@ mod tests {
         }
     }
 
-    /// What [`StepAhead::write`] and [`Carry::write`] write, their `read` takes back to the
+    /// What [`Quintic::write`] and [`Carry::write`] write, their `read` takes back to the
     /// same step and carry; numbers that cannot be one are refused.
     #[test]
     fn a_written_step_reads_back() {
         let mut d = Dopri5::new(1e-6, [1e-6; MAX_DIM], 1.0);
         let mut y = [0.01; MAX_DIM];
         let (_, step, carry) = d
-            .step_ahead(
+            .run_ahead(
                 &Relax::cosine(30.0),
                 // Past the first steps, which the start's guess keeps short.
                 (0.3, 0.5, 1.0),
@@ -311,11 +311,11 @@ mod tests {
         let mut saved = Vec::new();
         step.write(&mut saved);
         assert_eq!(saved.len(), SAVED_LEN);
-        assert_eq!(StepAhead::read(&saved), Some(step));
+        assert_eq!(Quintic::read(&saved), Some(step));
         let mut bad = saved.clone();
         bad[2] = 1.5;
-        assert_eq!(StepAhead::read(&bad), None);
-        assert_eq!(StepAhead::read(&saved[1..]), None);
+        assert_eq!(Quintic::read(&bad), None);
+        assert_eq!(Quintic::read(&saved[1..]), None);
 
         let mut saved = Vec::new();
         carry.write(&mut saved);
