@@ -1,4 +1,5 @@
-//! Models: one module file and folder per model, listed in `list.rs`. A model's simulation owns
+//! Models: one module file and folder per model, listed in `list.rs` (which declares their
+//! modules too). A model's simulation owns
 //! its state, its equations and its outputs; it reads parameters and inputs from a [`ValueSet`]
 //! and knows nothing of FMI.
 //!
@@ -14,10 +15,7 @@
 //! and its tests are all about its inputs (no `input_tests.rs`); DryFrictionOscillator holds its
 //! input over each step, so it has no `input_tests.rs` either.
 
-pub mod drive;
 pub mod input_scheme;
-pub mod longitudinal;
-pub mod oscillator;
 pub mod period_mean;
 #[cfg(test)]
 mod pinned_runs;
@@ -26,7 +24,6 @@ pub mod scope;
 #[cfg(feature = "tools")]
 pub mod stability;
 pub mod switch;
-pub mod transverse;
 
 use crate::error::{Error, Failure};
 use crate::variables::values::ValueSet;
@@ -193,6 +190,8 @@ pub struct Model {
 // and the registry of them all, from the list in src/models/list.rs.
 macro_rules! models {
     ($($module:ident => $constant:ident),* $(,)?) => {
+        $(pub mod $module;)*
+
         $(
             pub const $constant: Model = Model {
                 table: &$module::table::TABLE,
