@@ -503,12 +503,14 @@ impl Oscillator {
         self.amplitude.running = self.amplitude.running.max(largest);
     }
 
-    /// How many numbers the steps taken ahead add to a saved state: [`AHEAD_SAVED`] and the
-    /// solver's step.
+    /// How many numbers the steps taken ahead add to a saved state: [`AHEAD_SAVED`] and, where
+    /// it takes them, the solver's step.
     fn ahead_saved(&self) -> usize {
         AHEAD_SAVED
             + match &self.core {
-                Core::Regularized(_, Solver::General(method)) => method.step_ahead_saved(DIM),
+                Core::Regularized(_, Solver::General(method)) if self.takes_steps_ahead => {
+                    method.step_ahead_saved(DIM)
+                }
                 _ => 0,
             }
     }
