@@ -384,6 +384,62 @@ enum Stop<'a> {
     Ahead(AheadRun<'a>),
 }
 
+/// The last accepted step: its start, length, start state and switch values.
+type LastStep = (f64, f64, [f64; MAX_DIM], [f64; MAX_SWITCHES]);
+
+/// An accepted step, as a [`Stop`] sees it: its start (time, state, switches), its length and
+/// trial, y[0]'s rate at its start, its end (time, state, last stage), the switches there with their count and the decay
+/// rate, and whether it ended on a kink.
+struct Accepted<'a> {
+    start: (f64, &'a [f64; MAX_DIM], [f64; MAX_SWITCHES]),
+    h: f64,
+    tr: &'a Trial,
+    /// y[0]'s derivative at the start.
+    rate_at_start: f64,
+    end: (f64, &'a [f64], [f64; MAX_DIM]),
+    switches: ([f64; MAX_SWITCHES], usize, f64),
+    on_kink: bool,
+}
+
+impl Stop<'_> {
+    /// Whether the run stops after the step `s`, having taken from it what this stop keeps:
+    /// the largest |y[0]| on it for [`Stop::Kink`], the step and its carry for [`Stop::Ahead`].
+    fn after<S: Switching + ?Sized>(&mut self, ode: &S, s: &Accepted, work: &mut Work) -> bool {
+        let (t_start, y_start, sw_start) = s.start;
+        let (t, y, k1) = s.end;
+        match self {
+            Stop::End => false,
+            Stop::Kink(largest) => {
+                let largest: &mut f64 = largest;
+                *largest = largest.max(y[0].abs());
+                let rate_at_start = s.rate_at_start;
+                if rate_at_start * k1[0] < 0.0 {
+                    let coupled = ode.coupled().min(ode.dim());
+                    let dense = Dense::new(coupled, &y_start[..coupled], s.tr, s.h);
+                    *largest = largest.max(dense.extreme_of_first(rate_at_start > 0.0).abs());
+                }
+                s.on_kink
+            }
+            Stop::Ahead(a) if t >= a.past => {
+                let n = y.len();
+                let step = Quintic::new(ode, (t_start, &y_start[..n]), s.tr, s.h, work);
+                let (sw, count, sigma) = s.switches;
+                let carry = Carry {
+                    end: t,
+                    k1,
+                    sw,
+                    count,
+                    sigma,
+                    sw_prev: sw_start,
+                };
+                *a.slot = Some((step, carry));
+                true
+            }
+            Stop::Ahead(_) => false,
+        }
+    }
+}
+
 /// The last step taken ahead, as the run going on from its end sees it: its start and length
 /// in this run's time, its switches at the start, and its quintic.
 struct Carried<'a> {
@@ -790,20 +846,19 @@ impl Dopri5 {
         self.run(ode, (t0, t1), y, work, Stop::Kink(largest))
     }
 
-    /// The integration, up to where `stop` says.
-    fn run<S: Switching + ?Sized>(
-        &mut self,
+    /// Refuses a run of `ode` over `(t0, t1)` on `len` states that the settings or `stop`
+    /// cannot take.
+    fn check_run<S: Switching + ?Sized>(
+        &self,
         ode: &S,
         (t0, t1): (f64, f64),
-        y: &mut [f64],
-        work: &mut Work,
-        mut stop: Stop,
-    ) -> Result<f64, Error> {
+        len: usize,
+        stop: &Stop,
+    ) -> Result<(), Error> {
         let n = ode.dim();
-        if n > MAX_DIM || y.len() < n {
+        if n > MAX_DIM || len < n {
             return Err(failures::states_do_not_fit("dopri5", n, MAX_DIM));
         }
-        let coupled = ode.coupled().min(n);
         // Written so that NaN fails too.
         let valid = t1 >= t0 && self.rtol > 0.0 && self.h_max > 0.0;
         if !valid {
@@ -822,6 +877,127 @@ impl Dopri5 {
                 "a y[0] the interpolant holds as a polynomial (its extremes are read off it)",
             ));
         }
+        Ok(())
+    }
+
+    /// The first kink the trial `tr` of `h` from `(t, y)` crossed, as a fraction of the step
+    /// (1 for none) and its switch: the switches went from `sw_old` to `sw_new`; `predicted`
+    /// is the kink the step was placed to end on; with `across`, a kink where the right-hand
+    /// side stays C1 is taken where the step stops, not located.
+    #[allow(clippy::too_many_arguments)]
+    fn first_kink<S: Switching + ?Sized>(
+        ode: &S,
+        (t, y, h): (f64, &[f64], f64),
+        tr: &Trial,
+        coupled: usize,
+        (sw_old, sw_new, count): (&[f64; MAX_SWITCHES], &[f64; MAX_SWITCHES], usize),
+        predicted: Option<usize>,
+        across: bool,
+        h_tiny: f64,
+    ) -> (f64, Option<usize>) {
+        let mut theta_min = 1.0;
+        let mut first = None;
+        let mut dense = None;
+        let mut hit = false;
+        for i in 0..count {
+            if crossed(sw_old[i], sw_new[i]) {
+                if across {
+                    first.get_or_insert(i);
+                    continue;
+                }
+                let d = dense.get_or_insert_with(|| Dense::new(coupled, y, tr, h));
+                if predicted == Some(i) {
+                    // The end placed on a foreseen kink landed just past it (no sign change
+                    // before the last sliver of the step): close enough to keep the step.
+                    let m = 1.0 - PREDICTED_SLACK;
+                    if !crossed(sw_old[i], Self::switch_on(ode, t, d, h, i, m)) {
+                        hit = true;
+                        continue;
+                    }
+                }
+                let located = Self::locate(ode, t, d, h, i, sw_old[i], sw_new[i]);
+                let Some(theta) = located else { continue };
+                if theta * h > h_tiny && theta < theta_min {
+                    theta_min = theta;
+                    first = Some(i);
+                }
+            }
+        }
+        if hit && first.is_none() {
+            first = predicted;
+        }
+        (theta_min, first)
+    }
+
+    /// The kink the step of `h` from `last` (the last accepted step, or else the last step
+    /// taken ahead) foretells, with the step to it: its start's switches are `sw_now`.
+    fn foretell<S: Switching + ?Sized>(
+        ode: &S,
+        (prev, carried): (&Option<LastStep>, &Option<Carried>),
+        tr: &Trial,
+        coupled: usize,
+        sw_now: (&[f64; MAX_SWITCHES], usize),
+        h: f64,
+    ) -> Option<(usize, f64)> {
+        match (prev, carried) {
+            (Some((t_prev, h_prev, y_prev, sw_prev)), _) => {
+                let build = || Dense::new(coupled, &y_prev[..coupled], tr, *h_prev);
+                let last = (*t_prev, *h_prev, sw_prev);
+                Self::predict(ode, last, (&mut None, build), sw_now, h)
+            }
+            // A step taken ahead goes on from the last one's end: that step foretells.
+            (None, Some(c)) => {
+                let last = (c.t_prev, c.h_prev, &c.sw_prev);
+                let reading = (&mut Some(c.step), || c.step);
+                Self::predict(ode, last, reading, sw_now, h)
+            }
+            (None, None) => None,
+        }
+    }
+
+    /// Marks the kink a step of `h` ended on, `first` crossed or `predicted`, in its end's
+    /// switches `sw_end` (from `sw_start`; `sw_trial` the trial's at its full length), so that
+    /// the next step does not find it again; returns it (None for a predicted kink the step
+    /// ended well short of).
+    fn mark_kink(
+        (first, predicted): (Option<usize>, Option<usize>),
+        sw_end: &mut [f64; MAX_SWITCHES],
+        (sw_start, sw_trial): (&[f64; MAX_SWITCHES], &[f64; MAX_SWITCHES]),
+        h: f64,
+    ) -> Option<usize> {
+        if let Some(i) = first {
+            // Where the end landed a hair short of the kink, take it as crossed.
+            if crossed(sw_end[i], sw_trial[i]) {
+                sw_end[i] = f64::MIN_POSITIVE.copysign(sw_trial[i]);
+            }
+            return first;
+        }
+        let i = predicted?;
+        // A predicted kink the step did not cross: where it is only a sliver of this step
+        // ahead, take it as crossed.
+        let slope = (sw_end[i] - sw_start[i]) / h;
+        if slope != 0.0
+            && (sw_end[i] > 0.0) != (slope > 0.0)
+            && sw_end[i].abs() < PREDICTED_SLACK * h * slope.abs()
+        {
+            sw_end[i] = f64::MIN_POSITIVE.copysign(slope);
+            return Some(i);
+        }
+        None
+    }
+
+    /// The integration, up to where `stop` says.
+    fn run<S: Switching + ?Sized>(
+        &mut self,
+        ode: &S,
+        (t0, t1): (f64, f64),
+        y: &mut [f64],
+        work: &mut Work,
+        mut stop: Stop,
+    ) -> Result<f64, Error> {
+        let n = ode.dim();
+        self.check_run(ode, (t0, t1), y.len(), &stop)?;
+        let coupled = ode.coupled().min(n);
         if t1 == t0 {
             return Ok(t1);
         }
@@ -863,7 +1039,7 @@ impl Dopri5 {
         let mut ln_err_old = 0.0;
         // The last accepted step (its start, length, start state and switch values; its stages
         // stay in `tr` until the next trial), from which a coming kink is extrapolated.
-        let mut prev: Option<(f64, f64, [f64; MAX_DIM], [f64; MAX_SWITCHES])> = None;
+        let mut prev: Option<LastStep> = None;
         // Before the first: the last step taken ahead, its time counted in this run's.
         let mut carried = from.map(|(carry, step)| Carried {
             t_prev: step.t - carry.end + t0,
@@ -895,20 +1071,8 @@ impl Dopri5 {
             // A kink the last step's dense output says lies within this step: end the trial on
             // it, instead of a trial across it and a retake.
             let mut predicted = None;
-            let foretold = match (&prev, &carried) {
-                (Some((t_prev, h_prev, y_prev, sw_prev)), _) => {
-                    let build = || Dense::new(coupled, &y_prev[..coupled], &tr, *h_prev);
-                    let last = (*t_prev, *h_prev, sw_prev);
-                    Self::predict(ode, last, (&mut None, build), (&sw_old, count), h)
-                }
-                // A step taken ahead goes on from the last one's end: that step foretells.
-                (None, Some(c)) => {
-                    let last = (c.t_prev, c.h_prev, &c.sw_prev);
-                    let reading = (&mut Some(c.step), || c.step);
-                    Self::predict(ode, last, reading, (&sw_old, count), h)
-                }
-                (None, None) => None,
-            };
+            let before = (&prev, &carried);
+            let foretold = Self::foretell(ode, before, &tr, coupled, (&sw_old, count), h);
             if let Some((i, h_kink)) = foretold {
                 if h_kink > h_tiny && h_kink < h {
                     h = h_kink;
@@ -928,44 +1092,26 @@ impl Dopri5 {
             // by a wide margin, and halving towards the kink blindly costs several rejections,
             // while the trial's dense output already says where the kink is.
             let (_, sigma_new) = ode.switches_and_decay(t + h, &tr.y_new[..n], &mut sw_new);
-            let mut theta_min = 1.0;
-            let mut first = None;
-            let mut dense = None;
-            let mut hit = false;
             // A step that crossed only kinks where the right-hand side stays C1 and passed its
             // error test stands where it stops there (it stops a little past them): where they
             // lie is not needed.
             let across = matches!(stop, Stop::Kink(_))
                 && tr.err <= 1.0
                 && (0..count).all(|i| !crossed(sw_old[i], sw_new[i]) || ode.smooth_across(i));
-            for i in 0..count {
-                if crossed(sw_old[i], sw_new[i]) {
-                    if across {
-                        first.get_or_insert(i);
-                        continue;
-                    }
-                    let d = dense.get_or_insert_with(|| Dense::new(coupled, y, &tr, h));
-                    if predicted == Some(i) {
-                        // The end placed on a foreseen kink landed just past it (no sign change
-                        // before the last sliver of the step): close enough to keep the step.
-                        let m = 1.0 - PREDICTED_SLACK;
-                        if !crossed(sw_old[i], Self::switch_on(ode, t, d, h, i, m)) {
-                            hit = true;
-                            continue;
-                        }
-                    }
-                    let located = Self::locate(ode, t, d, h, i, sw_old[i], sw_new[i]);
-                    let Some(theta) = located else { continue };
-                    if theta * h > h_tiny && theta < theta_min {
-                        theta_min = theta;
-                        first = Some(i);
-                    }
-                }
-            }
-            if hit && first.is_none() {
-                first = predicted;
-            }
+            let switches = (&sw_old, &sw_new, count);
+            let (theta_min, first) = Self::first_kink(
+                ode,
+                (t, y, h),
+                &tr,
+                coupled,
+                switches,
+                predicted,
+                across,
+                h_tiny,
+            );
             let mut h_taken = h;
+            // A step that failed its error test, to be tried again shorter: its length and error.
+            let mut failed = None;
             if theta_min < 1.0 {
                 // Retake the step to end on the first kink; a shorter step from the same point
                 // passes the error test in all but freak cases, which the controller then handles.
@@ -976,22 +1122,17 @@ impl Dopri5 {
                     std::mem::swap(&mut tr, &mut retry);
                     h_taken = h_kink;
                 } else {
-                    work.rejected += 1;
-                    prev = None;
-                    carried = None;
-                    let fac = (SAFETY * retry.err.powf(-0.2)).clamp(0.1, 0.9);
-                    self.h = h_kink * fac;
-                    if self.h < h_tiny {
-                        return Err(self.step_fell(t, h_tiny));
-                    }
-                    continue;
+                    failed = Some((h_kink, retry.err));
                 }
             } else if tr.err > 1.0 {
+                failed = Some((h, tr.err));
+            }
+            if let Some((h_failed, err)) = failed {
                 work.rejected += 1;
                 prev = None;
                 carried = None;
-                let fac = (SAFETY * tr.err.powf(-0.2)).clamp(0.1, 0.9);
-                self.h = h * fac;
+                let fac = (SAFETY * err.powf(-0.2)).clamp(0.1, 0.9);
+                self.h = h_failed * fac;
                 if self.h < h_tiny {
                     return Err(self.step_fell(t, h_tiny));
                 }
@@ -1045,25 +1186,9 @@ impl Dopri5 {
             };
             (count, sigma) = (count_end, sigma_end);
             // The kink the step ended on (crossed, or a sliver short of it).
-            let mut on_kink = first;
-            if let Some(i) = first {
-                // The step ended on the kink of switch i, which the next step must not find
-                // again: where the end landed a hair short of it, take it as crossed.
-                if crossed(sw_old[i], sw_new[i]) {
-                    sw_old[i] = f64::MIN_POSITIVE.copysign(sw_new[i]);
-                }
-            } else if let Some(i) = predicted {
-                // The step ended on a predicted kink that it did not cross: where the kink is
-                // only a sliver of this step ahead, take it as crossed.
-                let slope = (sw_old[i] - sw_start[i]) / h_taken;
-                if slope != 0.0
-                    && (sw_old[i] > 0.0) != (slope > 0.0)
-                    && sw_old[i].abs() < PREDICTED_SLACK * h_taken * slope.abs()
-                {
-                    sw_old[i] = f64::MIN_POSITIVE.copysign(slope);
-                    on_kink = Some(i);
-                }
-            } else {
+            let ends = (first, predicted);
+            let on_kink = Self::mark_kink(ends, &mut sw_old, (&sw_start, &sw_new), h_taken);
+            if full {
                 let (fac, ln_err) = Self::growth(tr.err, ln_err_old);
                 ln_err_old = ln_err;
                 // The last step of a call may be cut short; do not let that shrink the next.
@@ -1076,31 +1201,17 @@ impl Dopri5 {
             if let Some(cap) = cap {
                 self.h = self.h.min(cap);
             }
-            if let Stop::Kink(largest) = &mut stop {
-                let largest: &mut f64 = largest;
-                *largest = largest.max(y[0].abs());
-                if rate_at_start * k1[0] < 0.0 {
-                    let dense = Dense::new(coupled, &y_start[..coupled], &tr, h_taken);
-                    *largest = largest.max(dense.extreme_of_first(rate_at_start > 0.0).abs());
-                }
-                if on_kink.is_some() {
-                    return Ok(t);
-                }
-            }
-            if let Stop::Ahead(a) = &mut stop {
-                if t >= a.past {
-                    let step = Quintic::new(ode, (t_start, &y_start[..n]), &tr, h_taken, work);
-                    let carry = Carry {
-                        end: t,
-                        k1,
-                        sw: sw_old,
-                        count,
-                        sigma,
-                        sw_prev: sw_start,
-                    };
-                    *a.slot = Some((step, carry));
-                    return Ok(t);
-                }
+            let accepted = Accepted {
+                start: (t_start, &y_start, sw_start),
+                h: h_taken,
+                tr: &tr,
+                rate_at_start,
+                end: (t, &y[..n], k1),
+                switches: (sw_old, count, sigma),
+                on_kink: on_kink.is_some(),
+            };
+            if stop.after(ode, &accepted, work) {
+                return Ok(t);
             }
         }
         Ok(t1)
