@@ -391,13 +391,13 @@ type LastStep = (f64, f64, [f64; MAX_DIM], [f64; MAX_SWITCHES]);
 /// trial, y[0]'s rate at its start, its end (time, state, last stage), the switches there with their count and the decay
 /// rate, and whether it ended on a kink.
 struct Accepted<'a> {
-    start: (f64, &'a [f64; MAX_DIM], [f64; MAX_SWITCHES]),
+    start: (f64, &'a [f64; MAX_DIM], &'a [f64; MAX_SWITCHES]),
     h: f64,
     tr: &'a Trial,
     /// y[0]'s derivative at the start.
     rate_at_start: f64,
-    end: (f64, &'a [f64], [f64; MAX_DIM]),
-    switches: ([f64; MAX_SWITCHES], usize, f64),
+    end: (f64, &'a [f64], &'a [f64; MAX_DIM]),
+    switches: (&'a [f64; MAX_SWITCHES], usize, f64),
     on_kink: bool,
 }
 
@@ -426,11 +426,11 @@ impl Stop<'_> {
                 let (sw, count, sigma) = s.switches;
                 let carry = Carry {
                     end: t,
-                    k1,
-                    sw,
+                    k1: *k1,
+                    sw: *sw,
                     count,
                     sigma,
-                    sw_prev: sw_start,
+                    sw_prev: *sw_start,
                 };
                 *a.slot = Some((step, carry));
                 true
@@ -880,55 +880,6 @@ impl Dopri5 {
         Ok(())
     }
 
-    /// The first kink the trial `tr` of `h` from `(t, y)` crossed, as a fraction of the step
-    /// (1 for none) and its switch: the switches went from `sw_old` to `sw_new`; `predicted`
-    /// is the kink the step was placed to end on; with `across`, a kink where the right-hand
-    /// side stays C1 is taken where the step stops, not located.
-    #[allow(clippy::too_many_arguments)]
-    fn first_kink<S: Switching + ?Sized>(
-        ode: &S,
-        (t, y, h): (f64, &[f64], f64),
-        tr: &Trial,
-        coupled: usize,
-        (sw_old, sw_new, count): (&[f64; MAX_SWITCHES], &[f64; MAX_SWITCHES], usize),
-        predicted: Option<usize>,
-        across: bool,
-        h_tiny: f64,
-    ) -> (f64, Option<usize>) {
-        let mut theta_min = 1.0;
-        let mut first = None;
-        let mut dense = None;
-        let mut hit = false;
-        for i in 0..count {
-            if crossed(sw_old[i], sw_new[i]) {
-                if across {
-                    first.get_or_insert(i);
-                    continue;
-                }
-                let d = dense.get_or_insert_with(|| Dense::new(coupled, y, tr, h));
-                if predicted == Some(i) {
-                    // The end placed on a foreseen kink landed just past it (no sign change
-                    // before the last sliver of the step): close enough to keep the step.
-                    let m = 1.0 - PREDICTED_SLACK;
-                    if !crossed(sw_old[i], Self::switch_on(ode, t, d, h, i, m)) {
-                        hit = true;
-                        continue;
-                    }
-                }
-                let located = Self::locate(ode, t, d, h, i, sw_old[i], sw_new[i]);
-                let Some(theta) = located else { continue };
-                if theta * h > h_tiny && theta < theta_min {
-                    theta_min = theta;
-                    first = Some(i);
-                }
-            }
-        }
-        if hit && first.is_none() {
-            first = predicted;
-        }
-        (theta_min, first)
-    }
-
     /// The kink the step of `h` from `last` (the last accepted step, or else the last step
     /// taken ahead) foretells, with the step to it: its start's switches are `sw_now`.
     fn foretell<S: Switching + ?Sized>(
@@ -1098,17 +1049,37 @@ impl Dopri5 {
             let across = matches!(stop, Stop::Kink(_))
                 && tr.err <= 1.0
                 && (0..count).all(|i| !crossed(sw_old[i], sw_new[i]) || ode.smooth_across(i));
-            let switches = (&sw_old, &sw_new, count);
-            let (theta_min, first) = Self::first_kink(
-                ode,
-                (t, y, h),
-                &tr,
-                coupled,
-                switches,
-                predicted,
-                across,
-                h_tiny,
-            );
+            let mut theta_min = 1.0;
+            let mut first = None;
+            let mut dense = None;
+            let mut hit = false;
+            for i in 0..count {
+                if crossed(sw_old[i], sw_new[i]) {
+                    if across {
+                        first.get_or_insert(i);
+                        continue;
+                    }
+                    let d = dense.get_or_insert_with(|| Dense::new(coupled, y, &tr, h));
+                    if predicted == Some(i) {
+                        // The end placed on a foreseen kink landed just past it (no sign change
+                        // before the last sliver of the step): close enough to keep the step.
+                        let m = 1.0 - PREDICTED_SLACK;
+                        if !crossed(sw_old[i], Self::switch_on(ode, t, d, h, i, m)) {
+                            hit = true;
+                            continue;
+                        }
+                    }
+                    let located = Self::locate(ode, t, d, h, i, sw_old[i], sw_new[i]);
+                    let Some(theta) = located else { continue };
+                    if theta * h > h_tiny && theta < theta_min {
+                        theta_min = theta;
+                        first = Some(i);
+                    }
+                }
+            }
+            if hit && first.is_none() {
+                first = predicted;
+            }
             let mut h_taken = h;
             // A step that failed its error test, to be tried again shorter: its length and error.
             let mut failed = None;
@@ -1201,13 +1172,16 @@ impl Dopri5 {
             if let Some(cap) = cap {
                 self.h = self.h.min(cap);
             }
+            if matches!(stop, Stop::End) {
+                continue;
+            }
             let accepted = Accepted {
-                start: (t_start, &y_start, sw_start),
+                start: (t_start, &y_start, &sw_start),
                 h: h_taken,
                 tr: &tr,
                 rate_at_start,
-                end: (t, &y[..n], k1),
-                switches: (sw_old, count, sigma),
+                end: (t, &y[..n], &k1),
+                switches: (&sw_old, count, sigma),
                 on_kink: on_kink.is_some(),
             };
             if stop.after(ode, &accepted, work) {
