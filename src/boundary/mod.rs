@@ -5,6 +5,7 @@
 //! [`Dialect`]: crate::instance::calls::Dialect
 
 pub mod args;
+pub mod forward;
 pub mod logging;
 pub mod states;
 pub mod values;
