@@ -388,8 +388,8 @@ enum Stop<'a> {
 type LastStep = (f64, f64, [f64; MAX_DIM], [f64; MAX_SWITCHES]);
 
 /// An accepted step, as a [`Stop`] sees it: its start (time, state, switches), its length and
-/// trial, y[0]'s rate at its start, its end (time, state, last stage), the switches there with their count and the decay
-/// rate, and whether it ended on a kink.
+/// trial, y[0]'s rate at its start, its end (time, state, last stage), the switches there with
+/// their count and the decay rate, and whether it ended on a kink.
 struct Accepted<'a> {
     start: (f64, &'a [f64; MAX_DIM], &'a [f64; MAX_SWITCHES]),
     h: f64,

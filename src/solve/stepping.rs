@@ -42,8 +42,8 @@ pub trait Stepping {
         None
     }
 
-    /// Advances `y` over `span`, from its start to its end, ending steps on the sign changes of `ode`'s switching
-    /// functions; an error says why the interval could not be completed.
+    /// Advances `y` over `span`, from its start to its end, ending steps on the sign changes of
+    /// `ode`'s switching functions; an error says why the interval could not be completed.
     fn advance<S: Switching>(
         &mut self,
         ode: &S,
@@ -90,8 +90,8 @@ pub trait Stepping {
     }
 
     /// How many numbers a step the solver takes ahead adds to a saved state
-    /// ([`StepAhead::write`]), `dim` the most states the model integrates; 0 where it takes
-    /// none.
+    /// ([`StepAhead::write`]), `dim` the most states the model integrates; 0 for a solver that
+    /// cannot take them.
     fn step_ahead_saved(&self, _dim: usize) -> usize {
         0
     }

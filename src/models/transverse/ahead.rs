@@ -3,10 +3,10 @@
 //! step the solver proposes whole, past its end, and reads the state at the point from the
 //! step ([`StepAhead`]); the calls that follow inside the step read it too, instead of each
 //! taking a step of its own, cut to the call. Only while the drive is prescribed: an input may
-//! change at every call, and the step would no longer be the motion's. A call that ends inside the step only moves the clock: the state there, and the
-//! force integral the period's mean adds, are read from the interpolant when something asks
-//! for them ([`Transverse::state`], [`Transverse::mean_now`]), and the mean takes the step's
-//! whole integral at its end.
+//! change at every call, and the step would no longer be the motion's. A call that ends inside
+//! the step only moves the clock: the state there, and the force integral the period's mean
+//! adds, are read from the step when something asks for them ([`Transverse::state`],
+//! [`Transverse::mean_now`]), and the mean takes the step's whole integral at its end.
 
 use super::{axial, Drive, Equations, Solver, Transverse, Q};
 use crate::error::Error;
