@@ -74,9 +74,9 @@ pub trait Stepping {
     /// [`Stepping::advance`] does: leaves `y` at its end and returns the end and the step, to
     /// be read inside. The step may end short of `t_end` (on a kink). `behind` is the last step
     /// taken ahead, where this one starts at its end; `readable`, the caller's own condition
-    /// for reading the step. None, with nothing changed but `work`, where the solver takes no
-    /// such step, or the step cannot be read inside to the tolerance, or not as the caller
-    /// asks.
+    /// for reading the step. None, with nothing changed but `work` and what the solver learnt
+    /// for its next step ahead, where it takes no such step, or the step cannot be read inside
+    /// to the tolerance, or not as the caller asks.
     fn step_ahead<S: Switching>(
         &mut self,
         _ode: &S,
