@@ -700,17 +700,25 @@ impl Dopri5 {
         let mut build = Some(build);
         let r = h / h_prev;
         // The candidates heading for zero and due within 1.5 steps along the line, by when.
-        let mut due = [(0usize, 0.0f64); MAX_SWITCHES];
-        let mut len = 0;
-        for i in 0..count {
+        // Heading for zero (s1 and the slope of opposite signs, neither 0 nor NaN) and due
+        // within 1.5 r: multiplications, so that only a candidate costs a division. Tested
+        // without branches, into a mask, then the candidates taken from it.
+        let within = 1.5 * r;
+        let mut heading = 0u32;
+        for i in 0..MAX_SWITCHES {
             let (s0, s1) = (sw_prev[i], sw_now[i]);
             let slope = s1 - s0;
-            // Heading for zero (s1 and the slope of opposite signs, neither 0 nor NaN) and due
-            // within 1.5 r: multiplications, so that only a candidate costs a division.
-            if !(s1 * slope < 0.0 && s1.abs() <= 1.5 * r * slope.abs()) {
-                continue;
-            }
-            due[len] = (i, -s1 / slope);
+            let candidate = (s1 * slope < 0.0) & (s1.abs() <= within * slope.abs());
+            heading |= u32::from(candidate) << i;
+        }
+        heading &= (1u32 << count.min(MAX_SWITCHES)) - 1;
+        let mut due = [(0usize, 0.0f64); MAX_SWITCHES];
+        let mut len = 0;
+        while heading != 0 {
+            let i = heading.trailing_zeros() as usize;
+            heading &= heading - 1;
+            let (s0, s1) = (sw_prev[i], sw_now[i]);
+            due[len] = (i, -s1 / (s1 - s0));
             len += 1;
         }
         let due = &mut due[..len];
@@ -881,10 +889,13 @@ impl Dopri5 {
     }
 
     /// The kink the step of `h` from `last` (the last accepted step, or else the last step
-    /// taken ahead) foretells, with the step to it: its start's switches are `sw_now`.
+    /// taken ahead) foretells, with the step to it: its start's switches are `sw_now`. The last
+    /// accepted step's dense output is `dense` where already built, else built there from `tr`.
+    #[allow(clippy::too_many_arguments)]
     fn foretell<S: Switching + ?Sized>(
         ode: &S,
         (prev, carried): (&Option<LastStep>, &Option<Carried>),
+        dense: &mut Option<Dense>,
         tr: &Trial,
         coupled: usize,
         sw_now: (&[f64; MAX_SWITCHES], usize),
@@ -894,7 +905,7 @@ impl Dopri5 {
             (Some((t_prev, h_prev, y_prev, sw_prev)), _) => {
                 let build = || Dense::new(coupled, &y_prev[..coupled], tr, *h_prev);
                 let last = (*t_prev, *h_prev, sw_prev);
-                Self::predict(ode, last, (&mut None, build), sw_now, h)
+                Self::predict(ode, last, (dense, build), sw_now, h)
             }
             // A step taken ahead goes on from the last one's end: that step foretells.
             (None, Some(c)) => {
@@ -991,6 +1002,11 @@ impl Dopri5 {
         // The last accepted step (its start, length, start state and switch values; its stages
         // stay in `tr` until the next trial), from which a coming kink is extrapolated.
         let mut prev: Option<LastStep> = None;
+        // The dense outputs of the last accepted step (where its trial built one to locate a
+        // kink, or a forecast from it did) and of the trial, slots swapped as a step is taken
+        // rather than moved.
+        let mut denses: [Option<Dense>; 2] = [None, None];
+        let mut now = 0;
         // Before the first: the last step taken ahead, its time counted in this run's.
         let mut carried = from.map(|(carry, step)| Carried {
             t_prev: step.t - carry.end + t0,
@@ -1023,7 +1039,16 @@ impl Dopri5 {
             // it, instead of a trial across it and a retake.
             let mut predicted = None;
             let before = (&prev, &carried);
-            let foretold = Self::foretell(ode, before, &tr, coupled, (&sw_old, count), h);
+            denses[now] = None;
+            let foretold = Self::foretell(
+                ode,
+                before,
+                &mut denses[now ^ 1],
+                &tr,
+                coupled,
+                (&sw_old, count),
+                h,
+            );
             if let Some((i, h_kink)) = foretold {
                 if h_kink > h_tiny && h_kink < h {
                     h = h_kink;
@@ -1054,7 +1079,6 @@ impl Dopri5 {
             // behind the code").
             let mut theta_min = 1.0;
             let mut first = None;
-            let mut dense = None;
             let mut hit = false;
             for i in 0..count {
                 if crossed(sw_old[i], sw_new[i]) {
@@ -1062,7 +1086,7 @@ impl Dopri5 {
                         first.get_or_insert(i);
                         continue;
                     }
-                    let d = dense.get_or_insert_with(|| Dense::new(coupled, y, &tr, h));
+                    let d = denses[now].get_or_insert_with(|| Dense::new(coupled, y, &tr, h));
                     if predicted == Some(i) {
                         // The end placed on a foreseen kink landed just past it (no sign change
                         // before the last sliver of the step): close enough to keep the step.
@@ -1104,6 +1128,7 @@ impl Dopri5 {
             if let Some((h_failed, err)) = failed {
                 work.rejected += 1;
                 prev = None;
+                denses[now ^ 1] = None;
                 carried = None;
                 let fac = (SAFETY * err.powf(-0.2)).clamp(0.1, 0.9);
                 self.h = h_failed * fac;
@@ -1128,6 +1153,7 @@ impl Dopri5 {
                         Verdict::Retake(h_short) => {
                             work.rejected += 1;
                             prev = None;
+                            denses[now ^ 1] = None;
                             carried = None;
                             self.h = h_short;
                             continue;
@@ -1144,6 +1170,11 @@ impl Dopri5 {
                     .record(h_lambda, tr.sigma * h_taken, t + h_taken);
             }
             prev = Some((t, h_taken, y_start, sw_start));
+            // The trial's dense output is that of the step taken unless a retake replaced it.
+            if h_taken != h {
+                denses[now] = None;
+            }
+            now ^= 1;
             carried = None;
             t = if last && full { t1 } else { t + h_taken };
             y[..n].copy_from_slice(&tr.y_new[..n]);
