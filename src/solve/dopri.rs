@@ -232,20 +232,29 @@ struct Dense {
 impl Dense {
     fn new(n: usize, y: &[f64], tr: &Trial, h: f64) -> Self {
         let mut r = [[0.0; MAX_DIM]; 5];
-        // The interpolant of u = e^(sigma tau) (y - c) for the decaying components.
-        let (y0, y_new) = tr.ends_of_u(n, y);
-        for j in 0..n {
-            let r2 = y_new[j] - y0[j];
+        // The ends of the interpolant of component j: of y, or, for a decaying component, of
+        // u = e^(sigma tau) (y - c) ([`Trial::ends_of_u`], without its copies of the states).
+        let mut ends = |j: usize, y0: f64, y1: f64| {
+            let r2 = y1 - y0;
             let r3 = h * tr.k[0][j] - r2;
             let r4 = r2 - h * tr.k[6][j] - r3;
+            r[0][j] = y0;
+            r[1][j] = r2;
+            r[2][j] = r3;
+            r[3][j] = r4;
+        };
+        for j in 0..n.min(MAX_DIM) {
+            ends(j, y[j], tr.y_new[j]);
+        }
+        for (m, j) in tr.decaying.iter().enumerate() {
+            let c = tr.shift[m];
+            ends(j, y[j] - c, (tr.y_new[j] - c) * tr.g[6]);
+        }
+        for j in 0..n.min(MAX_DIM) {
             let mut r5 = 0.0;
             for (s, d) in D.iter().enumerate() {
                 r5 += d * tr.k[s][j];
             }
-            r[0][j] = y0[j];
-            r[1][j] = r2;
-            r[2][j] = r3;
-            r[3][j] = r4;
             r[4][j] = h * r5;
         }
         Dense {
@@ -385,7 +394,12 @@ enum Stop<'a> {
 }
 
 /// The last accepted step: its start, length, start state and switch values.
-type LastStep = (f64, f64, [f64; MAX_DIM], [f64; MAX_SWITCHES]);
+struct LastStep {
+    t: f64,
+    h: f64,
+    y: [f64; MAX_DIM],
+    sw: [f64; MAX_SWITCHES],
+}
 
 /// An accepted step, as a [`Stop`] sees it: its start (time, state, switches), its length and
 /// trial, y[0]'s rate at its start, its end (time, state, last stage), the switches there with
@@ -894,7 +908,7 @@ impl Dopri5 {
     #[allow(clippy::too_many_arguments)]
     fn foretell<S: Switching + ?Sized>(
         ode: &S,
-        (prev, carried): (&Option<LastStep>, &Option<Carried>),
+        (prev, carried): (Option<&LastStep>, &Option<Carried>),
         dense: &mut Option<Dense>,
         tr: &Trial,
         coupled: usize,
@@ -902,9 +916,9 @@ impl Dopri5 {
         h: f64,
     ) -> Option<(usize, f64)> {
         match (prev, carried) {
-            (Some((t_prev, h_prev, y_prev, sw_prev)), _) => {
-                let build = || Dense::new(coupled, &y_prev[..coupled], tr, *h_prev);
-                let last = (*t_prev, *h_prev, sw_prev);
+            (Some(p), _) => {
+                let build = || Dense::new(coupled, &p.y[..coupled], tr, p.h);
+                let last = (p.t, p.h, &p.sw);
                 Self::predict(ode, last, (dense, build), sw_now, h)
             }
             // A step taken ahead goes on from the last one's end: that step foretells.
@@ -1001,7 +1015,14 @@ impl Dopri5 {
         let mut ln_err_old = 0.0;
         // The last accepted step (its start, length, start state and switch values; its stages
         // stay in `tr` until the next trial), from which a coming kink is extrapolated.
-        let mut prev: Option<LastStep> = None;
+        // Kept in place, its arrays written as a step is taken; `prev` says whether it stands.
+        let mut last_step = LastStep {
+            t: t0,
+            h: 0.0,
+            y: [0.0; MAX_DIM],
+            sw: [0.0; MAX_SWITCHES],
+        };
+        let mut prev = false;
         // The dense outputs of the last accepted step (where its trial built one to locate a
         // kink, or a forecast from it did) and of the trial, slots swapped as a step is taken
         // rather than moved.
@@ -1038,7 +1059,7 @@ impl Dopri5 {
             // A kink the last step's dense output says lies within this step: end the trial on
             // it, instead of a trial across it and a retake.
             let mut predicted = None;
-            let before = (&prev, &carried);
+            let before = (prev.then_some(&last_step), &carried);
             denses[now] = None;
             let foretold = Self::foretell(
                 ode,
@@ -1055,12 +1076,6 @@ impl Dopri5 {
                     predicted = Some(i);
                 }
             }
-            let y_start: [f64; MAX_DIM] = {
-                let mut a = [0.0; MAX_DIM];
-                a[..n].copy_from_slice(&y[..n]);
-                a
-            };
-            let (t_start, sw_start) = (t, sw_old);
             let rate_at_start = k1[0];
             let sigma_mid = (sigma + 0.5 * h * sigma_slope).max(0.0);
             self.trial(ode, t, y, &k1, h, (sigma, sigma_mid), &mut tr, work);
@@ -1127,7 +1142,7 @@ impl Dopri5 {
             }
             if let Some((h_failed, err)) = failed {
                 work.rejected += 1;
-                prev = None;
+                prev = false;
                 denses[now ^ 1] = None;
                 carried = None;
                 let fac = (SAFETY * err.powf(-0.2)).clamp(0.1, 0.9);
@@ -1145,14 +1160,14 @@ impl Dopri5 {
             };
             let sw_end = if h_taken == h { &sw_new } else { &sw_kink };
             let mut cap = None;
-            if let Some(r0) = ode.narrow(&sw_start) {
+            if let Some(r0) = ode.narrow(&sw_old) {
                 let r1 = ode.narrow(sw_end).map_or(f64::INFINITY, |e| e.r);
                 if Watch::near(r0, r1) {
                     let step = (t, &y[..n], &tr, h_taken);
                     match Self::judge_narrow(ode, &mut watch, step, h_tiny, r0, r1) {
                         Verdict::Retake(h_short) => {
                             work.rejected += 1;
-                            prev = None;
+                            prev = false;
                             denses[now ^ 1] = None;
                             carried = None;
                             self.h = h_short;
@@ -1169,7 +1184,11 @@ impl Dopri5 {
                 self.stiffness
                     .record(h_lambda, tr.sigma * h_taken, t + h_taken);
             }
-            prev = Some((t, h_taken, y_start, sw_start));
+            last_step.t = t;
+            last_step.h = h_taken;
+            last_step.y[..n].copy_from_slice(&y[..n]);
+            last_step.sw = sw_old;
+            prev = true;
             // The trial's dense output is that of the step taken unless a retake replaced it.
             if h_taken != h {
                 denses[now] = None;
@@ -1192,7 +1211,7 @@ impl Dopri5 {
             (count, sigma) = (count_end, sigma_end);
             // The kink the step ended on (crossed, or a sliver short of it).
             let ends = (first, predicted);
-            let on_kink = Self::mark_kink(ends, &mut sw_old, (&sw_start, &sw_new), h_taken);
+            let on_kink = Self::mark_kink(ends, &mut sw_old, (&last_step.sw, &sw_new), h_taken);
             if full {
                 let (fac, ln_err) = Self::growth(tr.err, ln_err_old);
                 ln_err_old = ln_err;
@@ -1210,7 +1229,7 @@ impl Dopri5 {
                 continue;
             }
             let accepted = Accepted {
-                start: (t_start, &y_start, &sw_start),
+                start: (last_step.t, &last_step.y, &last_step.sw),
                 h: h_taken,
                 tr: &tr,
                 rate_at_start,
