@@ -230,6 +230,7 @@ struct Dense {
 }
 
 impl Dense {
+    #[inline(always)]
     fn new(n: usize, y: &[f64], tr: &Trial, h: f64) -> Self {
         let mut r = [[0.0; MAX_DIM]; 5];
         // The ends of the interpolant of component j: of y, or, for a decaying component, of
@@ -272,6 +273,7 @@ impl Dense {
 
     /// [`Dense::at`], returning the integrating factor's way back there, e^(-sigma theta h)
     /// (1 without one).
+    #[inline(always)]
     fn at_with_decay(&self, theta: f64, len: usize, out: &mut [f64; MAX_DIM]) -> f64 {
         let u = 1.0 - theta;
         let r = &self.r;
