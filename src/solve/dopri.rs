@@ -23,7 +23,7 @@ use super::narrow::{Narrow, Verdict, Watch};
 use super::step_ahead;
 use super::stepping::{StepAhead, Stepping};
 use super::stiffness::StiffnessTest;
-use super::switching::{crossed, Smooth, Switching, MAX_SWITCHES};
+use super::switching::{crossed, crossings, Smooth, Switching, MAX_SWITCHES};
 use super::{Integrator, Ode, Work, MAX_DIM};
 use crate::error::{Error, Failure};
 
@@ -1097,8 +1097,11 @@ impl Dopri5 {
             let mut theta_min = 1.0;
             let mut first = None;
             let mut hit = false;
-            for i in 0..count {
-                if crossed(sw_old[i], sw_new[i]) {
+            let mut crossed_now = crossings(&sw_old, &sw_new, count);
+            while crossed_now != 0 {
+                let i = crossed_now.trailing_zeros() as usize;
+                crossed_now &= crossed_now - 1;
+                {
                     if across {
                         first.get_or_insert(i);
                         continue;

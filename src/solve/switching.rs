@@ -66,6 +66,20 @@ pub(super) fn crossed(old: f64, new: f64) -> bool {
     old != 0.0 && (new == 0.0 || (new > 0.0) != (old > 0.0))
 }
 
+/// The switches among the first `count` that [`crossed`] from `old` to `new`, as a mask (bit i:
+/// switch i), tested over all the slots without branches (in vector instructions).
+#[inline]
+pub(super) fn crossings(old: &[f64; MAX_SWITCHES], new: &[f64; MAX_SWITCHES], count: usize) -> u32 {
+    const _: () = assert!(MAX_SWITCHES < 32);
+    let mut mask = 0u32;
+    for i in 0..MAX_SWITCHES {
+        let (o, n) = (old[i], new[i]);
+        let crossed = (o != 0.0) & ((n == 0.0) | ((n > 0.0) != (o > 0.0)));
+        mask |= u32::from(crossed) << i;
+    }
+    mask & ((1u32 << count.min(MAX_SWITCHES)) - 1)
+}
+
 /// An ODE without switching functions, for the solvers that step on [`Switching`] alone.
 pub(super) struct Smooth<'a>(pub(super) &'a dyn Ode);
 
