@@ -267,6 +267,7 @@ impl Dense {
     }
 
     /// The first `len` states at `t + theta h` (the rest of `out` is left as it is).
+    #[inline(always)]
     fn at(&self, theta: f64, len: usize, out: &mut [f64; MAX_DIM]) {
         self.at_with_decay(theta, len, out);
     }
@@ -348,6 +349,7 @@ trait Reading {
 }
 
 impl Reading for Dense {
+    #[inline(always)]
     fn read(&self, theta: f64, len: usize, out: &mut [f64; MAX_DIM]) {
         self.at(theta, len, out);
     }

@@ -284,7 +284,7 @@ impl Switching for Equations<'_> {
         self.switches_of(v1, v2, out)
     }
 
-    #[inline]
+    #[inline(always)]
     fn switch(&self, t: f64, y: &[f64], i: usize) -> f64 {
         let (v1, v2) = self.p.radial_rates(y, self.support_velocity(t));
         self.switch_of(v1, v2, i)
