@@ -341,7 +341,7 @@ impl Equations<'_> {
     }
 
     /// `switches_of(v1, v2)[i]` alone.
-    #[inline]
+    #[inline(always)]
     pub(super) fn switch_of(&self, v1: f64, v2: f64, i: usize) -> f64 {
         let vr = v1 + v2;
         let vs = self.p.law.vs;
