@@ -230,6 +230,8 @@ struct Dense {
 }
 
 impl Dense {
+    // The rows r[k] and the states read at the same index j, as in the trial's stages.
+    #[allow(clippy::needless_range_loop)]
     #[inline(always)]
     fn new(n: usize, y: &[f64], tr: &Trial, h: f64) -> Self {
         let mut r = [[0.0; MAX_DIM]; 5];
