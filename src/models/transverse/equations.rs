@@ -322,7 +322,7 @@ impl Switching for Equations<'_> {
 }
 
 impl Equations<'_> {
-    #[inline]
+    #[inline(always)]
     pub(super) fn switches_of(&self, v1: f64, v2: f64, out: &mut [f64; MAX_SWITCHES]) -> usize {
         let vr = v1 + v2;
         let vs = self.p.law.vs;
