@@ -14,6 +14,7 @@
 
 use super::failures;
 use super::narrow::{Verdict, Watch};
+use super::starting_step::starting_step;
 use super::stepping::Stepping;
 use super::stiffness::StiffnessTest;
 use super::switching::{crossed, Smooth, Switching, MAX_SWITCHES};
@@ -680,22 +681,6 @@ impl Dop853 {
         failures::step_fell("dop853", (self.h, t, h_tiny), self.rtol)
     }
 
-    /// Hairer's starting step, as dopri5's, for an eighth-order error.
-    fn initial_step(&self, y: &[f64], k1: &[f64], span: f64) -> f64 {
-        let (mut d0, mut d1) = (0.0, 0.0);
-        for j in 0..y.len() {
-            let scale = self.atol[j] + self.rtol * y[j].abs();
-            d0 += (y[j] / scale).powi(2);
-            d1 += (k1[j] / scale).powi(2);
-        }
-        let h = if d0 < 1e-10 || d1 < 1e-10 {
-            1e-6 * span
-        } else {
-            0.01 * (d0 / d1).sqrt()
-        };
-        h.min(span).min(self.h_max) * self.rtol.powf(0.125).max(1e-3)
-    }
-
     /// Integrates `ode` from `t0` to `t1`, ending steps on the sign changes of its switching
     /// functions.
     pub fn integrate_switched<S: Switching + ?Sized>(
@@ -729,7 +714,12 @@ impl Dop853 {
         ode.rhs(t0, &y[..n], &mut k1[..n]);
         work.rhs_evaluations += 1;
         if self.h <= 0.0 {
-            self.h = self.initial_step(&y[..n], &k1[..n], span);
+            self.h = starting_step(
+                (&y[..n], &k1[..n]),
+                (self.rtol, &self.atol),
+                (span, self.h_max),
+                8,
+            );
         }
         let mut t = t0;
         let mut sw_old = [0.0; MAX_SWITCHES];

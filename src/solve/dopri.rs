@@ -20,6 +20,7 @@ pub use ahead::{Carry, Quintic, CARRY_SAVED, SAVED_LEN as QUINTIC_SAVED};
 
 use super::failures;
 use super::narrow::{Narrow, Verdict, Watch};
+use super::starting_step::starting_step;
 use super::step_ahead;
 use super::stepping::{StepAhead, Stepping};
 use super::stiffness::StiffnessTest;
@@ -999,7 +1000,12 @@ impl Dopri5 {
             }
         }
         if self.h <= 0.0 {
-            self.h = self.initial_step(&y[..n], &k1[..n], span);
+            self.h = starting_step(
+                (&y[..n], &k1[..n]),
+                (self.rtol, &self.atol),
+                (span, self.h_max),
+                5,
+            );
         }
         let mut t = t0;
         let mut sw_old = [0.0; MAX_SWITCHES];
@@ -1286,23 +1292,6 @@ impl Dopri5 {
     /// Why the integration stopped when the step fell below the shortest that t resolves.
     fn step_fell(&self, t: f64, h_tiny: f64) -> Error {
         failures::step_fell("dopri5", (self.h, t, h_tiny), self.rtol)
-    }
-
-    /// Hairer's starting step: a step whose Euler error would be about the tolerance.
-    fn initial_step(&self, y: &[f64], k1: &[f64], span: f64) -> f64 {
-        let mut d0 = 0.0;
-        let mut d1 = 0.0;
-        for j in 0..y.len() {
-            let scale = self.atol[j] + self.rtol * y[j].abs();
-            d0 += (y[j] / scale).powi(2);
-            d1 += (k1[j] / scale).powi(2);
-        }
-        let h = if d0 < 1e-10 || d1 < 1e-10 {
-            1e-6 * span
-        } else {
-            0.01 * (d0 / d1).sqrt()
-        };
-        h.min(span).min(self.h_max) * self.rtol.powf(0.2).max(1e-3)
     }
 }
 

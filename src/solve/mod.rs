@@ -17,6 +17,7 @@ pub mod radau;
 pub mod rk4;
 pub mod root;
 pub mod shooting;
+mod starting_step;
 pub mod step_ahead;
 pub mod stepping;
 pub mod stiffness;
