@@ -63,6 +63,10 @@ linted() {
 
 stage "cargo fmt --check"
 cargo fmt --check
+# The benchmarks' standalone crates, by rustfmt alone: cargo would resolve their dependencies
+# (SUNDIALS bindings, diffsol), which the test command does not need. rustfmt follows each crate's
+# modules from its main.rs.
+rustfmt --check --edition 2021 benches/compiled_peers/src/main.rs benches/diffsol_compare/src/main.rs
 stage "cargo test, linted by clippy"
 # The testing profile (Cargo.toml) builds in target/testing: the main command's target/release is
 # left as it is, so neither rebuilds the other. It also builds the friction-fmu command, which

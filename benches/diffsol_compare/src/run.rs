@@ -3,8 +3,8 @@
 
 use crate::cases::Case;
 use diffsol::{NalgebraLU, NalgebraMat, OdeBuilder, OdeSolverMethod, OdeSolverStopReason, Vector};
-use friction_fmu::solve::switching::MAX_SWITCHES;
 use friction_fmu::solve::radau::Radau5;
+use friction_fmu::solve::switching::MAX_SWITCHES;
 use friction_fmu::solve::{Integrator, Work, MAX_DIM};
 use std::cell::{Cell, RefCell};
 
