@@ -3,9 +3,10 @@
 //! inputs from a [`ValueSet`] and knows nothing of FMI.
 //!
 //! Every model has the same parts under the same names. `<model>.rs`: the simulation, its `build`
-//! (the [`Builder`]) and its constructors `new` (the full model), `with_scope` (a trimmed one) and
-//! `starting_from` (the state at the start time, before any periodic start is settled). Its
-//! folder: `table.rs` (the variables), `switches.rs` (the switches' enums), `equations.rs`,
+//! (the [`Builder`]), its steps and what the FMI layer reads of it ([`Simulation`]). Its folder:
+//! `start.rs` (the constructors `new` (the full model), `with_scope` (a trimmed one) and
+//! `starting_from` (the state at the start time), and the periodic start), `table.rs` (the
+//! variables), `switches.rs` (the switches' enums), `equations.rs`,
 //! `solver.rs` (the solver menu), `stability.rs` (its cases in the stability matrix, feature
 //! `tools`), `tests.rs`, `input_tests.rs` (inputs moving over a step) and `documentation.html`
 //! (its page in the FMU). Other files hold a model's own schemes (closed forms, the paper's

@@ -1,6 +1,7 @@
 use super::*;
 use crate::error::{Failure, Kind};
 use crate::models::oscillator::table::{FORCE_SOURCE, LAW, TABLE};
+use std::f64::consts::TAU;
 
 fn values(law: &str) -> ValueSet {
     let mut values = ValueSet::start(&TABLE);
