@@ -6,14 +6,15 @@
 //! (the [`Builder`]), its steps and what the FMI layer reads of it ([`Simulation`]). Its folder:
 //! `start.rs` (the constructors `new` (the full model), `with_scope` (a trimmed one) and
 //! `starting_from` (the state at the start time), and the periodic start), `table.rs` (the
-//! variables), `switches.rs` (the switches' enums), `equations.rs`,
-//! `solver.rs` (the solver menu), `stability.rs` (its cases in the stability matrix, feature
-//! `tools`), `tests.rs`, `input_tests.rs` (inputs moving over a step) and `documentation.html`
-//! (its page in the FMU). Other files hold a model's own schemes (closed forms, the paper's
-//! algorithms). Different by nature: DriveTrain is linear and steps by an exact propagator, so
-//! it has no solver menu (its `solver` switch has one item) and no `solver.rs`, no periodic start,
-//! and its tests are all about its inputs (no `input_tests.rs`); DryFrictionOscillator holds its
-//! input over each step, so it has no `input_tests.rs` either.
+//! variables), `switches.rs` (the switches' enums), `equations.rs`, `solver.rs` (the solver menu),
+//! `stability.rs` (its cases in the stability matrix, feature `tools`), `tests.rs`,
+//! `input_tests.rs` (inputs moving over a step), `documentation.html` (its page in the FMU) and,
+//! where the model takes steps past the communication point (scenes T and O), `ahead.rs`. Other
+//! files hold a model's own schemes (closed forms, the paper's algorithms). Different by nature:
+//! DriveTrain is linear and steps by an exact propagator, so it has no solver menu (its `solver`
+//! switch has one item) and no `solver.rs`, no periodic start, and its tests are all about its
+//! inputs (no `input_tests.rs`); DryFrictionOscillator holds its input over each step, so it has no
+//! `input_tests.rs` either.
 
 // The models' modules are declared here, not by `models!` from list.rs: rustfmt does not
 // follow modules a macro declares, and `cargo fmt` would leave their files unformatted and
