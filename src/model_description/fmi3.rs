@@ -3,9 +3,9 @@
 //! a model differ only in what each standard spells differently.
 
 use super::fmi3_xml::*;
-use super::xml::{causality, finite, number, variability, Category, LogCategories};
+use super::xml::{causality, to_xml, variability, Category, KindXml, LogCategories};
 use super::Description;
-use crate::variables::variable::{Causality, Kind, Variability, Variable, LOG_CATEGORIES};
+use crate::variables::variable::{Causality, Variability, Variable, LOG_CATEGORIES};
 
 /// The value reference of `time`, the independent variable FMI 3.0 requires every FMU to
 /// declare (FMI 2.0 leaves it implicit); no table uses it.
@@ -38,67 +38,52 @@ impl Description<'_> {
     /// 2.0 description ([`Description::write`]), so that one library checks one string whichever
     /// standard instantiates it.
     pub fn write_fmi3(&self, token: &str) -> String {
-        to_xml3(&self.model_description3(token))
+        to_xml(&self.model_description3(token))
     }
 
+    /// The variable with the type attributes FMI 2.0 writes ([`Description::kind`]), on the
+    /// element FMI 3.0 names after the type.
     fn variable3<'b>(&'b self, v: &'b Variable) -> Variable3<'b> {
-        let start = self.start(v);
+        let (name, value_reference) = (v.name, v.value_reference);
+        let description = self.variable_description(v);
         let (causality, variability) = (causality(v.causality), variability(v.variability));
-        match v.kind {
-            Kind::Real {
-                start: table_start,
+        match self.kind(v) {
+            KindXml::Real {
                 unit,
+                start,
                 min,
                 max,
             } => Variable3::Float64 {
-                name: v.name,
-                value_reference: v.value_reference,
-                description: v.description.to_string(),
+                name,
+                value_reference,
+                description,
                 causality,
                 variability,
                 // Every continuous input is read at the FMU's own steps inside a doStep.
                 intermediate_update: (v.causality == Causality::Input
                     && v.variability == Variability::Continuous)
                     .then_some(true),
-                unit: (!unit.is_empty()).then_some(unit),
-                // Calculated outputs may not carry a start value.
-                start: (v.causality != Causality::Output)
-                    .then(|| number(start.unwrap_or(table_start))),
-                min: finite(min),
-                max: finite(max),
+                unit,
+                start,
+                min,
+                max,
             },
-            Kind::Integer {
-                start: table_start,
+            KindXml::Integer {
+                declared_type,
+                start,
                 min,
                 max,
             } => Variable3::Int32 {
-                name: v.name,
-                value_reference: v.value_reference,
-                description: v.description.to_string(),
+                name,
+                value_reference,
+                description,
                 causality,
                 variability,
-                declared_type: None,
-                start: start.map_or(table_start, |x| x as i32),
+                declared_type,
+                start,
                 min,
                 max,
             },
-            Kind::Switch {
-                type_name,
-                start: table_start,
-            } => {
-                let enum_type = self.switch_type(type_name);
-                Variable3::Int32 {
-                    name: v.name,
-                    value_reference: v.value_reference,
-                    description: format!("{} ({})", v.description, enum_type.listing()),
-                    causality,
-                    variability,
-                    declared_type: Some(type_name),
-                    start: start.map_or(table_start, |x| x as i32),
-                    min: 1,
-                    max: enum_type.items.len() as i32,
-                }
-            }
         }
     }
 

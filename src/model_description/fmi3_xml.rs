@@ -1,5 +1,6 @@
 //! The XML shape of modelDescription.xml (FMI 3.0), as serde structs for quick-xml. Units, log
-//! categories and the default experiment are written as in FMI 2.0 ([`super::xml`]).
+//! categories and the default experiment are written as in FMI 2.0 ([`super::xml`]), and so is
+//! the document around them ([`super::xml::to_xml`]).
 
 use super::xml::{DefaultExperimentXml, LogCategories, UnitDefinitions};
 use serde::Serialize;
@@ -181,14 +182,4 @@ pub struct Unknown3 {
     pub value_reference: u32,
     #[serde(rename = "@dependencies", skip_serializing_if = "Option::is_none")]
     pub dependencies: Option<String>,
-}
-
-pub fn to_xml3(description: &ModelDescription3) -> String {
-    let mut body = String::new();
-    let mut serializer = quick_xml::se::Serializer::new(&mut body);
-    serializer.indent(' ', 2);
-    // As in to_xml: plain structs into a String cannot fail, and an empty body fails every
-    // test that reads the XML.
-    let _ = description.serialize(serializer);
-    format!("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n{body}\n")
 }

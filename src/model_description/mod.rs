@@ -80,9 +80,11 @@ impl<'a> Description<'a> {
             .map(|&(_, x)| x)
     }
 
-    fn scalar_variable<'b>(&'b self, v: &'b Variable) -> ScalarVariable<'b> {
+    /// A variable's type attributes, which both standards write alike: FMI 2.0 as the
+    /// ScalarVariable's Real or Integer element, FMI 3.0 on its Float64 or Int32 element.
+    fn kind(&self, v: &Variable) -> KindXml<'static> {
         let start = self.start(v);
-        let kind = match v.kind {
+        match v.kind {
             Kind::Real {
                 start: table_start,
                 unit,
@@ -115,22 +117,29 @@ impl<'a> Description<'a> {
                 min: 1,
                 max: self.switch_type(type_name).items.len() as i32,
             },
-        };
-        let description = match v.kind {
+        }
+    }
+
+    /// A variable's description; a switch's numbers its items, as its type's does.
+    fn variable_description(&self, v: &Variable) -> String {
+        match v.kind {
             Kind::Switch { type_name, .. } => format!(
                 "{} ({})",
                 v.description,
                 self.switch_type(type_name).listing()
             ),
             _ => v.description.to_string(),
-        };
+        }
+    }
+
+    fn scalar_variable<'b>(&'b self, v: &'b Variable) -> ScalarVariable<'b> {
         ScalarVariable {
             name: v.name,
             value_reference: v.value_reference,
-            description,
+            description: self.variable_description(v),
             causality: causality(v.causality),
             variability: variability(v.variability),
-            kind,
+            kind: self.kind(v),
         }
     }
 

@@ -260,7 +260,9 @@ pub fn finite(x: f64) -> Option<String> {
     x.is_finite().then(|| number(x))
 }
 
-pub fn to_xml(description: &ModelDescription) -> String {
+/// Either standard's description (FMI 3.0's too) as the file's text: indented by two spaces,
+/// after the XML declaration.
+pub fn to_xml(description: &impl Serialize) -> String {
     let mut body = String::new();
     let mut serializer = quick_xml::se::Serializer::new(&mut body);
     serializer.indent(' ', 2);
