@@ -3,9 +3,9 @@
 //! a model differ only in what each standard spells differently.
 
 use super::fmi3_xml::*;
-use super::xml::{causality, to_xml, variability, Category, KindXml, LogCategories};
+use super::xml::{causality, to_xml, variability, KindXml};
 use super::Description;
-use crate::variables::variable::{Causality, Variability, Variable, LOG_CATEGORIES};
+use crate::variables::variable::{Causality, Variability, Variable};
 
 /// The value reference of `time`, the independent variable FMI 3.0 requires every FMU to
 /// declare (FMI 2.0 leaves it implicit); no table uses it.
@@ -16,22 +16,6 @@ pub const TIME_NAME: &str = "time";
 
 /// What `logCalls` logs, in FMI 3.0's names; the categories are those of FMI 2.0.
 const LOG_CALLS: &str = "The calls that change the instance, with their arguments: fmi3Enter/ExitInitializationMode, fmi3SetXXX, fmi3DoStep, fmi3Get/Set/DeSerializeFMUState, fmi3Terminate, fmi3Reset";
-
-fn log_categories3() -> LogCategories<'static> {
-    LogCategories {
-        categories: LOG_CATEGORIES
-            .iter()
-            .map(|&(name, description)| Category {
-                name,
-                description: if name == "logCalls" {
-                    LOG_CALLS
-                } else {
-                    description
-                },
-            })
-            .collect(),
-    }
-}
 
 impl Description<'_> {
     /// The FMI 3.0 modelDescription.xml. Its instantiationToken is `token`: the GUID of the FMI
@@ -113,34 +97,19 @@ impl Description<'_> {
     }
 
     fn model_structure3(&self) -> ModelStructure3 {
-        // A dependency on an input the list leaves out (a variant's hidden input, held at its
-        // value) is no dependency, as in FMI 2.0.
-        let listed = |vr: &&u32| self.variables.iter().any(|v| v.value_reference == **vr);
-        let outputs: Vec<&Variable> = self
-            .variables
-            .iter()
-            .copied()
-            .filter(|v| v.causality == Causality::Output)
-            .collect();
+        let outputs = self.outputs();
         ModelStructure3 {
             outputs: outputs
                 .iter()
-                .map(|v| Unknown3 {
+                .map(|&(_, v)| Unknown3 {
                     value_reference: v.value_reference,
-                    dependencies: Some(
-                        v.depends_on
-                            .iter()
-                            .filter(listed)
-                            .map(u32::to_string)
-                            .collect::<Vec<_>>()
-                            .join(" "),
-                    ),
+                    dependencies: Some(self.dependencies(v, |_, vr| vr.to_string())),
                 })
                 .collect(),
             // Every output is calculated at initialisation from all parameters and inputs.
             initial_unknowns: outputs
                 .iter()
-                .map(|v| Unknown3 {
+                .map(|&(_, v)| Unknown3 {
                     value_reference: v.value_reference,
                     dependencies: None,
                 })
@@ -181,9 +150,7 @@ impl Description<'_> {
                     .map(|unit| Float64Type { name: unit, unit })
                     .collect(),
                 types: self
-                    .enum_types
-                    .iter()
-                    .filter(|e| self.uses_type(e.name))
+                    .used_types()
                     .map(|e| Int32Type {
                         name: e.name,
                         description: e.listing(),
@@ -192,7 +159,7 @@ impl Description<'_> {
                     })
                     .collect(),
             },
-            log_categories: log_categories3(),
+            log_categories: Self::log_categories(Some(LOG_CALLS)),
             default_experiment: self.default_experiment(),
             variables: ModelVariables3 { variables },
             structure: self.model_structure3(),

@@ -156,42 +156,51 @@ impl<'a> Description<'a> {
             .any(|v| matches!(v.kind, Kind::Real { unit, .. } if unit == name))
     }
 
-    fn uses_type(&self, name: &str) -> bool {
-        self.variables
-            .iter()
-            .any(|v| matches!(v.kind, Kind::Switch { type_name, .. } if type_name == name))
-    }
-
-    fn model_structure(&self) -> ModelStructure {
-        // ModelVariables indices are 1-based, in list order. A dependency on an input the list
-        // leaves out (a variant's hidden input, held at its value) is no dependency.
-        let index_of = |vr: u32| {
+    /// The enumeration types the listed switches use, in the model's order.
+    fn used_types(&self) -> impl Iterator<Item = &EnumType> {
+        self.enum_types.iter().filter(|e| {
             self.variables
                 .iter()
-                .position(|v| v.value_reference == vr)
-                .map(|i| i + 1)
-        };
-        let outputs: Vec<(usize, &Variable)> = self
-            .variables
+                .any(|v| matches!(v.kind, Kind::Switch { type_name, .. } if type_name == e.name))
+        })
+    }
+
+    /// The listed outputs with their ModelVariables indices (1-based, in list order).
+    fn outputs(&self) -> Vec<(usize, &Variable)> {
+        self.variables
             .iter()
             .enumerate()
             .filter(|(_, v)| v.causality == Causality::Output)
             .map(|(i, v)| (i + 1, *v))
-            .collect();
+            .collect()
+    }
+
+    /// What `v` depends on, space-separated, each named by `name` from its index and value
+    /// reference (FMI 2.0 names the index, FMI 3.0 the value reference). A dependency on an
+    /// input the list leaves out (a variant's hidden input, held at its value) is no dependency.
+    fn dependencies(&self, v: &Variable, name: impl Fn(usize, u32) -> String) -> String {
+        v.depends_on
+            .iter()
+            .filter_map(|&vr| {
+                let index = self
+                    .variables
+                    .iter()
+                    .position(|v| v.value_reference == vr)?;
+                Some(name(index + 1, vr))
+            })
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+
+    fn model_structure(&self) -> ModelStructure {
+        let outputs = self.outputs();
         ModelStructure {
             outputs: Unknowns {
                 unknowns: outputs
                     .iter()
                     .map(|&(index, v)| Unknown {
                         index,
-                        dependencies: Some(
-                            v.depends_on
-                                .iter()
-                                .filter_map(|&vr| index_of(vr))
-                                .map(|i| i.to_string())
-                                .collect::<Vec<_>>()
-                                .join(" "),
-                        ),
+                        dependencies: Some(self.dependencies(v, |index, _| index.to_string())),
                     })
                     .collect(),
             },
@@ -229,11 +238,19 @@ impl<'a> Description<'a> {
         }
     }
 
-    fn log_categories(&self) -> LogCategories<'static> {
+    /// The log categories, `logCalls` described as `log_calls` if given (each standard names its
+    /// own functions) and as the table has it (FMI 2.0's) if not.
+    fn log_categories(log_calls: Option<&'static str>) -> LogCategories<'static> {
         LogCategories {
             categories: crate::variables::variable::LOG_CATEGORIES
                 .iter()
-                .map(|&(name, description)| Category { name, description })
+                .map(|&(name, description)| Category {
+                    name,
+                    description: match log_calls {
+                        Some(calls) if name == "logCalls" => calls,
+                        _ => description,
+                    },
+                })
                 .collect(),
         }
     }
@@ -272,9 +289,7 @@ impl<'a> Description<'a> {
             units: self.unit_definitions(&|name| self.uses_unit(name)),
             types: TypeDefinitions {
                 types: self
-                    .enum_types
-                    .iter()
-                    .filter(|e| self.uses_type(e.name))
+                    .used_types()
                     .map(|e| SimpleType {
                         name: e.name,
                         description: e.listing(),
@@ -285,7 +300,7 @@ impl<'a> Description<'a> {
                     })
                     .collect(),
             },
-            log_categories: self.log_categories(),
+            log_categories: Self::log_categories(None),
             default_experiment: self.default_experiment(),
             variables: ModelVariables {
                 variables: self
