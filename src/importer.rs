@@ -52,6 +52,34 @@ impl Sink {
         // A panicking test thread must not hide the log from the others.
         self.messages.lock().unwrap_or_else(|e| e.into_inner())
     }
+
+    /// The messages logged so far, oldest first.
+    fn messages(&self) -> Vec<Message> {
+        self.lock().clone()
+    }
+
+    /// The text of the last message logged, or "" if none.
+    fn last_text(&self) -> String {
+        self.lock()
+            .last()
+            .map(|m| m.text.clone())
+            .unwrap_or_default()
+    }
+
+    /// Removes and returns the messages logged so far.
+    fn take(&self) -> Vec<Message> {
+        std::mem::take(&mut *self.lock())
+    }
+}
+
+/// What `ImportedInstance::new` of either standard returns for a model this binary does not
+/// contain: a log of one refusal with status `error`.
+fn no_model(model_identifier: &str, error: i32) -> Vec<Message> {
+    vec![Message {
+        status: error,
+        category: "driver".into(),
+        text: format!("no model {model_identifier} in this binary"),
+    }]
 }
 
 fn lossy(text: *const c_char) -> String {
@@ -143,9 +171,43 @@ impl State {
         self.0
     }
 
+    /// The state as both standards pass it (FMI 2.0's and FMI 3.0's FMU states are pointers).
     fn pointer(self) -> FmuState {
         self.0 as FmuState
     }
+
+    /// Passes the state to `call` as the FMU-state slot it may overwrite (fmi2/fmi3 Get, Free
+    /// and DeSerialize) and keeps what the call leaves there: a new state, NULL, or itself.
+    fn through<S>(&mut self, call: impl FnOnce(&mut FmuState) -> S) -> S {
+        let mut slot = self.pointer();
+        let status = call(&mut slot);
+        *self = State(slot as usize);
+        status
+    }
+}
+
+/// `value` if the call that gave it returned `ok`, else the call's status.
+fn ok_then<S: PartialEq, T>(status: S, ok: S, value: T) -> Result<T, S> {
+    if status == ok {
+        Ok(value)
+    } else {
+        Err(status)
+    }
+}
+
+/// A state's bytes, as both standards serialize: `size` is what the size call returned, then
+/// `serialize` fills a buffer of that size. The first status other than `ok` is the error.
+fn serialized<S: PartialEq>(
+    ok: S,
+    (status, size): (S, usize),
+    serialize: impl FnOnce(&mut [u8]) -> S,
+) -> Result<Vec<u8>, S> {
+    if status != ok {
+        return Err(status);
+    }
+    let mut bytes = vec![0; size];
+    let status = serialize(&mut bytes);
+    ok_then(status, ok, bytes)
 }
 
 /// Which argument [`ImportedInstance::call_with_null`] passes as NULL, and to which function.
@@ -217,6 +279,14 @@ fn c_pointer(text: &Option<CString>) -> *const c_char {
     text.as_ref().map_or(std::ptr::null(), |t| t.as_ptr())
 }
 
+/// Each text as a C string, without the NULs it cannot carry.
+fn c_strings(texts: &[&str]) -> Vec<CString> {
+    texts
+        .iter()
+        .map(|t| CString::new(t.replace('\0', "")).unwrap_or_default())
+        .collect()
+}
+
 /// One FMU instance of this crate, called in-process, with its log.
 ///
 /// Dropping it frees the FMU instance (and, through the FMU, every state it still holds).
@@ -243,11 +313,7 @@ impl ImportedInstance {
     ) -> Result<ImportedInstance, Vec<Message>> {
         match Instantiation::new(model_identifier, instance_name) {
             Some(arguments) => ImportedInstance::instantiate(&arguments),
-            None => Err(vec![Message {
-                status: Status::Error as i32,
-                category: "driver".into(),
-                text: format!("no model {model_identifier} in this binary"),
-            }]),
+            None => Err(no_model(model_identifier, Status::Error as i32)),
         }
     }
 
@@ -282,8 +348,7 @@ impl ImportedInstance {
             }
         };
         if component.is_null() {
-            let log = std::mem::take(&mut *sink.lock());
-            return Err(log);
+            return Err(sink.take());
         }
         Ok(ImportedInstance {
             component: component as usize,
@@ -303,21 +368,17 @@ impl ImportedInstance {
 
     /// The messages logged so far, oldest first.
     pub fn messages(&self) -> Vec<Message> {
-        self.sink.lock().clone()
+        self.sink.messages()
     }
 
     /// The text of the last message logged, or "" if none.
     pub fn last_message(&self) -> String {
-        self.sink
-            .lock()
-            .last()
-            .map(|m| m.text.clone())
-            .unwrap_or_default()
+        self.sink.last_text()
     }
 
     /// Removes and returns the messages logged so far.
     pub fn take_messages(&mut self) -> Vec<Message> {
-        std::mem::take(&mut *self.sink.lock())
+        self.sink.take()
     }
 
     /// Whether fmi2FreeInstance has been called through this driver instance.
@@ -326,10 +387,7 @@ impl ImportedInstance {
     }
 
     pub fn set_debug_logging(&mut self, logging_on: bool, categories: &[&str]) -> Status {
-        let names: Vec<CString> = categories
-            .iter()
-            .map(|c| CString::new(c.replace('\0', "")).unwrap_or_default())
-            .collect();
+        let names = c_strings(categories);
         let pointers: Vec<ffi::FmiString> = names.iter().map(|c| c.as_ptr()).collect();
         // SAFETY: `pointers` holds `len` live C strings.
         unsafe {
@@ -459,10 +517,7 @@ impl ImportedInstance {
     /// fmi2SetString. Panics as [`ImportedInstance::set_real`].
     pub fn set_string(&mut self, vrs: &[u32], values: &[&str]) -> Status {
         assert_eq!(vrs.len(), values.len(), "one value per value reference");
-        let texts: Vec<CString> = values
-            .iter()
-            .map(|v| CString::new(v.replace('\0', "")).unwrap_or_default())
-            .collect();
+        let texts = c_strings(values);
         let pointers: Vec<ffi::FmiString> = texts.iter().map(|t| t.as_ptr()).collect();
         // SAFETY: both arrays hold `vrs.len()` elements; the strings live for the call.
         unsafe { fmi2SetString(self.c(), vrs.as_ptr(), vrs.len(), pointers.as_ptr()) }
@@ -530,20 +585,15 @@ impl ImportedInstance {
     /// fmi2GetFMUstate into a new state.
     pub fn get_fmu_state(&mut self) -> Result<State, Status> {
         let mut state = State::NULL;
-        match self.update_fmu_state(&mut state) {
-            Status::Ok => Ok(state),
-            status => Err(status),
-        }
+        let status = self.update_fmu_state(&mut state);
+        ok_then(status, Status::Ok, state)
     }
 
     /// fmi2GetFMUstate into `state`: a new one if it is NULL, else the FMU overwrites it (if it
     /// is one of this instance's) or refuses.
     pub fn update_fmu_state(&mut self, state: &mut State) -> Status {
-        let mut slot = state.pointer();
         // SAFETY: `slot` is a valid fmi2FMUstate to write to; its value is validated by the FMU.
-        let status = unsafe { fmi2GetFMUstate(self.c(), &mut slot) };
-        *state = State(slot as usize);
-        status
+        state.through(|slot| unsafe { fmi2GetFMUstate(self.c(), slot) })
     }
 
     pub fn set_fmu_state(&mut self, state: State) -> Status {
@@ -553,11 +603,8 @@ impl ImportedInstance {
 
     /// fmi2FreeFMUstate; on success `state` becomes NULL.
     pub fn free_fmu_state(&mut self, state: &mut State) -> Status {
-        let mut slot = state.pointer();
         // SAFETY: as for `update_fmu_state`.
-        let status = unsafe { fmi2FreeFMUstate(self.c(), &mut slot) };
-        *state = State(slot as usize);
-        status
+        state.through(|slot| unsafe { fmi2FreeFMUstate(self.c(), slot) })
     }
 
     pub fn serialized_fmu_state_size(&mut self, state: State) -> (Status, usize) {
@@ -582,40 +629,26 @@ impl ImportedInstance {
 
     /// fmi2SerializedFMUstateSize, then fmi2SerializeFMUstate into a buffer of that size.
     pub fn serialize_fmu_state(&mut self, state: State) -> Result<Vec<u8>, Status> {
-        let (status, size) = self.serialized_fmu_state_size(state);
-        if status != Status::Ok {
-            return Err(status);
-        }
-        let mut bytes = vec![0; size];
-        match self.serialize_fmu_state_into(state, &mut bytes) {
-            Status::Ok => Ok(bytes),
-            status => Err(status),
-        }
+        let size = self.serialized_fmu_state_size(state);
+        serialized(Status::Ok, size, |bytes| {
+            self.serialize_fmu_state_into(state, bytes)
+        })
     }
 
     /// fmi2DeSerializeFMUstate into a new state.
     pub fn deserialize_fmu_state(&mut self, bytes: &[u8]) -> Result<State, Status> {
         let mut state = State::NULL;
-        match self.deserialize_fmu_state_into(bytes, &mut state) {
-            Status::Ok => Ok(state),
-            status => Err(status),
-        }
+        let status = self.deserialize_fmu_state_into(bytes, &mut state);
+        ok_then(status, Status::Ok, state)
     }
 
     /// fmi2DeSerializeFMUstate into `state` (overwritten if it is one of this instance's).
     pub fn deserialize_fmu_state_into(&mut self, bytes: &[u8], state: &mut State) -> Status {
-        let mut slot = state.pointer();
+        let bytes_pointer = bytes.as_ptr() as *const ffi::Byte;
         // SAFETY: `bytes` holds the size passed; `slot` as for `update_fmu_state`.
-        let status = unsafe {
-            fmi2DeSerializeFMUstate(
-                self.c(),
-                bytes.as_ptr() as *const ffi::Byte,
-                bytes.len(),
-                &mut slot,
-            )
-        };
-        *state = State(slot as usize);
-        status
+        state.through(|slot| unsafe {
+            fmi2DeSerializeFMUstate(self.c(), bytes_pointer, bytes.len(), slot)
+        })
     }
 
     /// fmi2GetDirectionalDerivative of `unknowns` with respect to `knowns` (seeded with `seed`).
