@@ -235,11 +235,25 @@ impl NullArgument {
     }
 }
 
-/// The fmi3 functions of the interfaces, modes and features FMI 3.0 declares and these FMUs
-/// leave out (model exchange, scheduled execution, event and configuration modes, clocks,
-/// dependencies, derivatives): each called with valid arrays of one element.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Unsupported {
+/// Declares [`Unsupported`] and its `ALL`, so that the functions are listed once.
+macro_rules! unsupported {
+    ($($function:ident,)*) => {
+        /// The fmi3 functions of the interfaces, modes and features FMI 3.0 declares and these
+        /// FMUs leave out (model exchange, scheduled execution, event and configuration modes,
+        /// clocks, dependencies, derivatives): each called with valid arrays of one element.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub enum Unsupported {
+            $($function,)*
+        }
+
+        impl Unsupported {
+            pub const ALL: [Unsupported; [$(stringify!($function)),*].len()] =
+                [$(Unsupported::$function),*];
+        }
+    };
+}
+
+unsupported! {
     EnterEventMode,
     GetNumberOfVariableDependencies,
     GetVariableDependencies,
@@ -272,41 +286,6 @@ pub enum Unsupported {
 }
 
 impl Unsupported {
-    pub const ALL: [Unsupported; 29] = {
-        use Unsupported::*;
-        [
-            EnterEventMode,
-            GetNumberOfVariableDependencies,
-            GetVariableDependencies,
-            GetDirectionalDerivative,
-            GetAdjointDerivative,
-            EnterConfigurationMode,
-            ExitConfigurationMode,
-            GetIntervalDecimal,
-            GetIntervalFraction,
-            GetShiftDecimal,
-            GetShiftFraction,
-            SetIntervalDecimal,
-            SetIntervalFraction,
-            SetShiftDecimal,
-            SetShiftFraction,
-            EvaluateDiscreteStates,
-            UpdateDiscreteStates,
-            EnterContinuousTimeMode,
-            CompletedIntegratorStep,
-            SetTime,
-            SetContinuousStates,
-            GetContinuousStateDerivatives,
-            GetEventIndicators,
-            GetContinuousStates,
-            GetNominalsOfContinuousStates,
-            GetNumberOfEventIndicators,
-            GetNumberOfContinuousStates,
-            EnterStepMode,
-            ActivateModelPartition,
-        ]
-    };
-
     /// The C function, e.g. "fmi3EnterEventMode".
     pub fn function(self) -> String {
         format!("fmi3{self:?}")
