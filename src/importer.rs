@@ -26,71 +26,19 @@
 use crate::fmi2::exports::*;
 use crate::fmi2::ffi::{self, CallbackFunctions, CallbackLogger, FmuState, Status};
 use crate::instance::library::Binary;
-use std::ffi::{c_char, c_int, c_void, CStr, CString};
+use c_strings::{c_pointer, c_strings, c_text, lossy};
+use messages::{no_model, Sink};
+use state::{ok_then, serialized};
+use std::ffi::{c_char, c_int, c_void};
 use std::sync::{Mutex, MutexGuard};
 
+mod c_strings;
 pub mod fmi3;
+mod messages;
+mod state;
 
-/// One message the FMU sent to its logger.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Message {
-    /// The fmi2Status the FMU logged with, as its integer (0 = OK ... 4 = Fatal).
-    pub status: i32,
-    pub category: String,
-    pub text: String,
-}
-
-/// Where an instance's logger writes: one per [`ImportedInstance`], boxed so its address (passed
-/// to the FMU as the component environment) stays put while the instance lives.
-#[derive(Default)]
-struct Sink {
-    messages: Mutex<Vec<Message>>,
-}
-
-impl Sink {
-    fn lock(&self) -> MutexGuard<'_, Vec<Message>> {
-        // A panicking test thread must not hide the log from the others.
-        self.messages.lock().unwrap_or_else(|e| e.into_inner())
-    }
-
-    /// The messages logged so far, oldest first.
-    fn messages(&self) -> Vec<Message> {
-        self.lock().clone()
-    }
-
-    /// The text of the last message logged, or "" if none.
-    fn last_text(&self) -> String {
-        self.lock()
-            .last()
-            .map(|m| m.text.clone())
-            .unwrap_or_default()
-    }
-
-    /// Removes and returns the messages logged so far.
-    fn take(&self) -> Vec<Message> {
-        std::mem::take(&mut *self.lock())
-    }
-}
-
-/// What `ImportedInstance::new` of either standard returns for a model this binary does not
-/// contain: a log of one refusal with status `error`.
-fn no_model(model_identifier: &str, error: i32) -> Vec<Message> {
-    vec![Message {
-        status: error,
-        category: "driver".into(),
-        text: format!("no model {model_identifier} in this binary"),
-    }]
-}
-
-fn lossy(text: *const c_char) -> String {
-    if text.is_null() {
-        return String::new();
-    }
-    // SAFETY: the FMU passes NUL-terminated strings that live until the logger returns.
-    unsafe { CStr::from_ptr(text) }
-        .to_string_lossy()
-        .into_owned()
-}
+pub use messages::Message;
+pub use state::State;
 
 /// The logger, with the FMI signature's variadic tail spelled as the one `const char*` argument
 /// this FMU ever passes (it always logs with the format "%s"; see `logger.rs`).
@@ -153,63 +101,6 @@ fn allocation() -> MutexGuard<'static, ()> {
     ALLOCATION.lock().unwrap_or_else(|e| e.into_inner())
 }
 
-/// An FMU state this driver got from an instance, as the bare address the FMU handed out.
-///
-/// A `State` carries no ownership: it may be stale (freed), belong to another instance, or be
-/// made up with [`State::from_address`]; the FMU refuses each of those with an error.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct State(usize);
-
-impl State {
-    pub const NULL: State = State(0);
-
-    pub fn from_address(address: usize) -> State {
-        State(address)
-    }
-
-    pub fn address(self) -> usize {
-        self.0
-    }
-
-    /// The state as both standards pass it (FMI 2.0's and FMI 3.0's FMU states are pointers).
-    fn pointer(self) -> FmuState {
-        self.0 as FmuState
-    }
-
-    /// Passes the state to `call` as the FMU-state slot it may overwrite (fmi2/fmi3 Get, Free
-    /// and DeSerialize) and keeps what the call leaves there: a new state, NULL, or itself.
-    fn through<S>(&mut self, call: impl FnOnce(&mut FmuState) -> S) -> S {
-        let mut slot = self.pointer();
-        let status = call(&mut slot);
-        *self = State(slot as usize);
-        status
-    }
-}
-
-/// `value` if the call that gave it returned `ok`, else the call's status.
-fn ok_then<S: PartialEq, T>(status: S, ok: S, value: T) -> Result<T, S> {
-    if status == ok {
-        Ok(value)
-    } else {
-        Err(status)
-    }
-}
-
-/// A state's bytes, as both standards serialize: `size` is what the size call returned, then
-/// `serialize` fills a buffer of that size. The first status other than `ok` is the error.
-fn serialized<S: PartialEq>(
-    ok: S,
-    (status, size): (S, usize),
-    serialize: impl FnOnce(&mut [u8]) -> S,
-) -> Result<Vec<u8>, S> {
-    if status != ok {
-        return Err(status);
-    }
-    let mut bytes = vec![0; size];
-    let status = serialize(&mut bytes);
-    ok_then(status, ok, bytes)
-}
-
 /// Which argument [`ImportedInstance::call_with_null`] passes as NULL, and to which function.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum NullArgument {
@@ -267,24 +158,6 @@ impl Instantiation {
             logging_on: false,
         })
     }
-}
-
-fn c_text(text: &Option<String>) -> Option<CString> {
-    // Interior NULs cannot cross as C strings; cut there, as C would read it.
-    text.as_ref()
-        .map(|t| CString::new(t.split('\0').next().unwrap_or_default()).unwrap_or_default())
-}
-
-fn c_pointer(text: &Option<CString>) -> *const c_char {
-    text.as_ref().map_or(std::ptr::null(), |t| t.as_ptr())
-}
-
-/// Each text as a C string, without the NULs it cannot carry.
-fn c_strings(texts: &[&str]) -> Vec<CString> {
-    texts
-        .iter()
-        .map(|t| CString::new(t.replace('\0', "")).unwrap_or_default())
-        .collect()
 }
 
 /// One FMU instance of this crate, called in-process, with its log.
