@@ -3,7 +3,7 @@
 //! a model differ only in what each standard spells differently.
 
 use super::fmi3_xml::*;
-use super::xml::{causality, to_xml, variability, KindXml};
+use super::xml::{to_xml, KindXml, VariableHead};
 use super::Description;
 use crate::variables::variable::{Causality, Variability, Variable};
 
@@ -28,9 +28,7 @@ impl Description<'_> {
     /// The variable with the type attributes FMI 2.0 writes ([`Description::kind`]), on the
     /// element FMI 3.0 names after the type.
     fn variable3<'b>(&'b self, v: &'b Variable) -> Variable3<'b> {
-        let (name, value_reference) = (v.name, v.value_reference);
-        let description = self.variable_description(v);
-        let (causality, variability) = (causality(v.causality), variability(v.variability));
+        let head = self.variable_head(v);
         match self.kind(v) {
             KindXml::Real {
                 unit,
@@ -38,11 +36,7 @@ impl Description<'_> {
                 min,
                 max,
             } => Variable3::Float64 {
-                name,
-                value_reference,
-                description,
-                causality,
-                variability,
+                head,
                 // Every continuous input is read at the FMU's own steps inside a doStep.
                 intermediate_update: (v.causality == Causality::Input
                     && v.variability == Variability::Continuous)
@@ -58,11 +52,7 @@ impl Description<'_> {
                 min,
                 max,
             } => Variable3::Int32 {
-                name,
-                value_reference,
-                description,
-                causality,
-                variability,
+                head,
                 declared_type,
                 start,
                 min,
@@ -83,11 +73,13 @@ impl Description<'_> {
 
     fn time_variable() -> Variable3<'static> {
         Variable3::Float64 {
-            name: TIME_NAME,
-            value_reference: TIME_VALUE_REFERENCE,
-            description: "Simulation time".to_string(),
-            causality: "independent",
-            variability: "continuous",
+            head: VariableHead {
+                name: TIME_NAME,
+                value_reference: TIME_VALUE_REFERENCE,
+                description: "Simulation time".to_string(),
+                causality: "independent",
+                variability: "continuous",
+            },
             intermediate_update: None,
             unit: Some("s"),
             start: None,

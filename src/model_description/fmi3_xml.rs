@@ -2,7 +2,7 @@
 //! categories and the default experiment are written as in FMI 2.0 ([`super::xml`]), and so is
 //! the document around them ([`super::xml::to_xml`]).
 
-use super::xml::{DefaultExperimentXml, LogCategories, UnitDefinitions};
+use super::xml::{DefaultExperimentXml, LogCategories, UnitDefinitions, VariableHead};
 use serde::Serialize;
 
 #[derive(Serialize)]
@@ -119,16 +119,8 @@ pub struct ModelVariables3<'a> {
 #[derive(Serialize)]
 pub enum Variable3<'a> {
     Float64 {
-        #[serde(rename = "@name")]
-        name: &'a str,
-        #[serde(rename = "@valueReference")]
-        value_reference: u32,
-        #[serde(rename = "@description")]
-        description: String,
-        #[serde(rename = "@causality")]
-        causality: &'a str,
-        #[serde(rename = "@variability")]
-        variability: &'a str,
+        #[serde(flatten)]
+        head: VariableHead<'a>,
         /// Only on inputs the FMU reads inside a step (set in Intermediate Update Mode).
         #[serde(
             rename = "@intermediateUpdate",
@@ -146,16 +138,8 @@ pub enum Variable3<'a> {
         max: Option<String>,
     },
     Int32 {
-        #[serde(rename = "@name")]
-        name: &'a str,
-        #[serde(rename = "@valueReference")]
-        value_reference: u32,
-        #[serde(rename = "@description")]
-        description: String,
-        #[serde(rename = "@causality")]
-        causality: &'a str,
-        #[serde(rename = "@variability")]
-        variability: &'a str,
+        #[serde(flatten)]
+        head: VariableHead<'a>,
         #[serde(rename = "@declaredType", skip_serializing_if = "Option::is_none")]
         declared_type: Option<&'a str>,
         #[serde(rename = "@start")]

@@ -132,13 +132,20 @@ impl<'a> Description<'a> {
         }
     }
 
-    fn scalar_variable<'b>(&'b self, v: &'b Variable) -> ScalarVariable<'b> {
-        ScalarVariable {
+    /// The attributes both standards start a variable's element with.
+    fn variable_head(&self, v: &Variable) -> VariableHead<'static> {
+        VariableHead {
             name: v.name,
             value_reference: v.value_reference,
             description: self.variable_description(v),
             causality: causality(v.causality),
             variability: variability(v.variability),
+        }
+    }
+
+    fn scalar_variable(&self, v: &Variable) -> ScalarVariable<'static> {
+        ScalarVariable {
+            head: self.variable_head(v),
             kind: self.kind(v),
         }
     }

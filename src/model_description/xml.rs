@@ -167,6 +167,17 @@ pub struct ModelVariables<'a> {
 
 #[derive(Serialize)]
 pub struct ScalarVariable<'a> {
+    #[serde(flatten)]
+    pub head: VariableHead<'a>,
+    #[serde(rename = "$value")]
+    pub kind: KindXml<'a>,
+}
+
+/// The attributes every variable's element starts with, in both standards. Flattened into the
+/// element's struct, whose other attributes (and FMI 2.0's type element) follow them, as quick-xml
+/// writes a flattened struct's `@` fields as attributes of the element, in field order.
+#[derive(Serialize)]
+pub struct VariableHead<'a> {
     #[serde(rename = "@name")]
     pub name: &'a str,
     #[serde(rename = "@valueReference")]
@@ -177,8 +188,6 @@ pub struct ScalarVariable<'a> {
     pub causality: &'a str,
     #[serde(rename = "@variability")]
     pub variability: &'a str,
-    #[serde(rename = "$value")]
-    pub kind: KindXml<'a>,
 }
 
 #[derive(Serialize)]
