@@ -26,43 +26,19 @@
 use crate::fmi2::exports::*;
 use crate::fmi2::ffi::{self, CallbackFunctions, CallbackLogger, FmuState, Status};
 use crate::instance::library::Binary;
-use std::ffi::{c_char, c_int, c_void, CStr, CString};
+use c_strings::{c_pointer, c_strings, c_text, lossy};
+use messages::{no_model, Sink};
+use state::{ok_then, serialized};
+use std::ffi::{c_char, c_int, c_void};
 use std::sync::{Mutex, MutexGuard};
 
+mod c_strings;
 pub mod fmi3;
+mod messages;
+mod state;
 
-/// One message the FMU sent to its logger.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Message {
-    /// The fmi2Status the FMU logged with, as its integer (0 = OK ... 4 = Fatal).
-    pub status: i32,
-    pub category: String,
-    pub text: String,
-}
-
-/// Where an instance's logger writes: one per [`ImportedInstance`], boxed so its address (passed
-/// to the FMU as the component environment) stays put while the instance lives.
-#[derive(Default)]
-struct Sink {
-    messages: Mutex<Vec<Message>>,
-}
-
-impl Sink {
-    fn lock(&self) -> MutexGuard<'_, Vec<Message>> {
-        // A panicking test thread must not hide the log from the others.
-        self.messages.lock().unwrap_or_else(|e| e.into_inner())
-    }
-}
-
-fn lossy(text: *const c_char) -> String {
-    if text.is_null() {
-        return String::new();
-    }
-    // SAFETY: the FMU passes NUL-terminated strings that live until the logger returns.
-    unsafe { CStr::from_ptr(text) }
-        .to_string_lossy()
-        .into_owned()
-}
+pub use messages::Message;
+pub use state::State;
 
 /// The logger, with the FMI signature's variadic tail spelled as the one `const char*` argument
 /// this FMU ever passes (it always logs with the format "%s"; see `logger.rs`).
@@ -125,29 +101,6 @@ fn allocation() -> MutexGuard<'static, ()> {
     ALLOCATION.lock().unwrap_or_else(|e| e.into_inner())
 }
 
-/// An FMU state this driver got from an instance, as the bare address the FMU handed out.
-///
-/// A `State` carries no ownership: it may be stale (freed), belong to another instance, or be
-/// made up with [`State::from_address`]; the FMU refuses each of those with an error.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct State(usize);
-
-impl State {
-    pub const NULL: State = State(0);
-
-    pub fn from_address(address: usize) -> State {
-        State(address)
-    }
-
-    pub fn address(self) -> usize {
-        self.0
-    }
-
-    fn pointer(self) -> FmuState {
-        self.0 as FmuState
-    }
-}
-
 /// Which argument [`ImportedInstance::call_with_null`] passes as NULL, and to which function.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum NullArgument {
@@ -207,16 +160,6 @@ impl Instantiation {
     }
 }
 
-fn c_text(text: &Option<String>) -> Option<CString> {
-    // Interior NULs cannot cross as C strings; cut there, as C would read it.
-    text.as_ref()
-        .map(|t| CString::new(t.split('\0').next().unwrap_or_default()).unwrap_or_default())
-}
-
-fn c_pointer(text: &Option<CString>) -> *const c_char {
-    text.as_ref().map_or(std::ptr::null(), |t| t.as_ptr())
-}
-
 /// One FMU instance of this crate, called in-process, with its log.
 ///
 /// Dropping it frees the FMU instance (and, through the FMU, every state it still holds).
@@ -243,11 +186,7 @@ impl ImportedInstance {
     ) -> Result<ImportedInstance, Vec<Message>> {
         match Instantiation::new(model_identifier, instance_name) {
             Some(arguments) => ImportedInstance::instantiate(&arguments),
-            None => Err(vec![Message {
-                status: Status::Error as i32,
-                category: "driver".into(),
-                text: format!("no model {model_identifier} in this binary"),
-            }]),
+            None => Err(no_model(model_identifier, Status::Error as i32)),
         }
     }
 
@@ -282,8 +221,7 @@ impl ImportedInstance {
             }
         };
         if component.is_null() {
-            let log = std::mem::take(&mut *sink.lock());
-            return Err(log);
+            return Err(sink.take());
         }
         Ok(ImportedInstance {
             component: component as usize,
@@ -303,21 +241,17 @@ impl ImportedInstance {
 
     /// The messages logged so far, oldest first.
     pub fn messages(&self) -> Vec<Message> {
-        self.sink.lock().clone()
+        self.sink.messages()
     }
 
     /// The text of the last message logged, or "" if none.
     pub fn last_message(&self) -> String {
-        self.sink
-            .lock()
-            .last()
-            .map(|m| m.text.clone())
-            .unwrap_or_default()
+        self.sink.last_text()
     }
 
     /// Removes and returns the messages logged so far.
     pub fn take_messages(&mut self) -> Vec<Message> {
-        std::mem::take(&mut *self.sink.lock())
+        self.sink.take()
     }
 
     /// Whether fmi2FreeInstance has been called through this driver instance.
@@ -326,10 +260,7 @@ impl ImportedInstance {
     }
 
     pub fn set_debug_logging(&mut self, logging_on: bool, categories: &[&str]) -> Status {
-        let names: Vec<CString> = categories
-            .iter()
-            .map(|c| CString::new(c.replace('\0', "")).unwrap_or_default())
-            .collect();
+        let names = c_strings(categories);
         let pointers: Vec<ffi::FmiString> = names.iter().map(|c| c.as_ptr()).collect();
         // SAFETY: `pointers` holds `len` live C strings.
         unsafe {
@@ -459,10 +390,7 @@ impl ImportedInstance {
     /// fmi2SetString. Panics as [`ImportedInstance::set_real`].
     pub fn set_string(&mut self, vrs: &[u32], values: &[&str]) -> Status {
         assert_eq!(vrs.len(), values.len(), "one value per value reference");
-        let texts: Vec<CString> = values
-            .iter()
-            .map(|v| CString::new(v.replace('\0', "")).unwrap_or_default())
-            .collect();
+        let texts = c_strings(values);
         let pointers: Vec<ffi::FmiString> = texts.iter().map(|t| t.as_ptr()).collect();
         // SAFETY: both arrays hold `vrs.len()` elements; the strings live for the call.
         unsafe { fmi2SetString(self.c(), vrs.as_ptr(), vrs.len(), pointers.as_ptr()) }
@@ -530,20 +458,15 @@ impl ImportedInstance {
     /// fmi2GetFMUstate into a new state.
     pub fn get_fmu_state(&mut self) -> Result<State, Status> {
         let mut state = State::NULL;
-        match self.update_fmu_state(&mut state) {
-            Status::Ok => Ok(state),
-            status => Err(status),
-        }
+        let status = self.update_fmu_state(&mut state);
+        ok_then(status, Status::Ok, state)
     }
 
     /// fmi2GetFMUstate into `state`: a new one if it is NULL, else the FMU overwrites it (if it
     /// is one of this instance's) or refuses.
     pub fn update_fmu_state(&mut self, state: &mut State) -> Status {
-        let mut slot = state.pointer();
         // SAFETY: `slot` is a valid fmi2FMUstate to write to; its value is validated by the FMU.
-        let status = unsafe { fmi2GetFMUstate(self.c(), &mut slot) };
-        *state = State(slot as usize);
-        status
+        state.through(|slot| unsafe { fmi2GetFMUstate(self.c(), slot) })
     }
 
     pub fn set_fmu_state(&mut self, state: State) -> Status {
@@ -553,11 +476,8 @@ impl ImportedInstance {
 
     /// fmi2FreeFMUstate; on success `state` becomes NULL.
     pub fn free_fmu_state(&mut self, state: &mut State) -> Status {
-        let mut slot = state.pointer();
         // SAFETY: as for `update_fmu_state`.
-        let status = unsafe { fmi2FreeFMUstate(self.c(), &mut slot) };
-        *state = State(slot as usize);
-        status
+        state.through(|slot| unsafe { fmi2FreeFMUstate(self.c(), slot) })
     }
 
     pub fn serialized_fmu_state_size(&mut self, state: State) -> (Status, usize) {
@@ -582,40 +502,26 @@ impl ImportedInstance {
 
     /// fmi2SerializedFMUstateSize, then fmi2SerializeFMUstate into a buffer of that size.
     pub fn serialize_fmu_state(&mut self, state: State) -> Result<Vec<u8>, Status> {
-        let (status, size) = self.serialized_fmu_state_size(state);
-        if status != Status::Ok {
-            return Err(status);
-        }
-        let mut bytes = vec![0; size];
-        match self.serialize_fmu_state_into(state, &mut bytes) {
-            Status::Ok => Ok(bytes),
-            status => Err(status),
-        }
+        let size = self.serialized_fmu_state_size(state);
+        serialized(Status::Ok, size, |bytes| {
+            self.serialize_fmu_state_into(state, bytes)
+        })
     }
 
     /// fmi2DeSerializeFMUstate into a new state.
     pub fn deserialize_fmu_state(&mut self, bytes: &[u8]) -> Result<State, Status> {
         let mut state = State::NULL;
-        match self.deserialize_fmu_state_into(bytes, &mut state) {
-            Status::Ok => Ok(state),
-            status => Err(status),
-        }
+        let status = self.deserialize_fmu_state_into(bytes, &mut state);
+        ok_then(status, Status::Ok, state)
     }
 
     /// fmi2DeSerializeFMUstate into `state` (overwritten if it is one of this instance's).
     pub fn deserialize_fmu_state_into(&mut self, bytes: &[u8], state: &mut State) -> Status {
-        let mut slot = state.pointer();
+        let bytes_pointer = bytes.as_ptr() as *const ffi::Byte;
         // SAFETY: `bytes` holds the size passed; `slot` as for `update_fmu_state`.
-        let status = unsafe {
-            fmi2DeSerializeFMUstate(
-                self.c(),
-                bytes.as_ptr() as *const ffi::Byte,
-                bytes.len(),
-                &mut slot,
-            )
-        };
-        *state = State(slot as usize);
-        status
+        state.through(|slot| unsafe {
+            fmi2DeSerializeFMUstate(self.c(), bytes_pointer, bytes.len(), slot)
+        })
     }
 
     /// fmi2GetDirectionalDerivative of `unknowns` with respect to `knowns` (seeded with `seed`).

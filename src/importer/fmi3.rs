@@ -16,7 +16,9 @@
 //! calls stay memory-safe as long as the FMU keeps to the C signatures; whether it refuses the
 //! rest is what is being tested.
 
-use super::{lossy, Message, Sink, State};
+use super::{
+    c_pointer, c_strings, c_text, lossy, no_model, ok_then, serialized, Message, Sink, State,
+};
 use crate::fmi3::exports::*;
 use crate::fmi3::ffi::{
     self, BinaryValue, Boolean, FmiInstance, FmiString, FmuState, InstanceEnvironment, Status,
@@ -24,7 +26,7 @@ use crate::fmi3::ffi::{
 };
 use crate::instance::calls::ValueType;
 use crate::instance::library::Binary;
-use std::ffi::{c_char, c_void, CString};
+use std::ffi::{c_char, c_void};
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::Mutex;
 
@@ -233,11 +235,25 @@ impl NullArgument {
     }
 }
 
-/// The fmi3 functions of the interfaces, modes and features FMI 3.0 declares and these FMUs
-/// leave out (model exchange, scheduled execution, event and configuration modes, clocks,
-/// dependencies, derivatives): each called with valid arrays of one element.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Unsupported {
+/// Declares [`Unsupported`] and its `ALL`, so that the functions are listed once.
+macro_rules! unsupported {
+    ($($function:ident,)*) => {
+        /// The fmi3 functions of the interfaces, modes and features FMI 3.0 declares and these
+        /// FMUs leave out (model exchange, scheduled execution, event and configuration modes,
+        /// clocks, dependencies, derivatives): each called with valid arrays of one element.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub enum Unsupported {
+            $($function,)*
+        }
+
+        impl Unsupported {
+            pub const ALL: [Unsupported; [$(stringify!($function)),*].len()] =
+                [$(Unsupported::$function),*];
+        }
+    };
+}
+
+unsupported! {
     EnterEventMode,
     GetNumberOfVariableDependencies,
     GetVariableDependencies,
@@ -270,41 +286,6 @@ pub enum Unsupported {
 }
 
 impl Unsupported {
-    pub const ALL: [Unsupported; 29] = {
-        use Unsupported::*;
-        [
-            EnterEventMode,
-            GetNumberOfVariableDependencies,
-            GetVariableDependencies,
-            GetDirectionalDerivative,
-            GetAdjointDerivative,
-            EnterConfigurationMode,
-            ExitConfigurationMode,
-            GetIntervalDecimal,
-            GetIntervalFraction,
-            GetShiftDecimal,
-            GetShiftFraction,
-            SetIntervalDecimal,
-            SetIntervalFraction,
-            SetShiftDecimal,
-            SetShiftFraction,
-            EvaluateDiscreteStates,
-            UpdateDiscreteStates,
-            EnterContinuousTimeMode,
-            CompletedIntegratorStep,
-            SetTime,
-            SetContinuousStates,
-            GetContinuousStateDerivatives,
-            GetEventIndicators,
-            GetContinuousStates,
-            GetNominalsOfContinuousStates,
-            GetNumberOfEventIndicators,
-            GetNumberOfContinuousStates,
-            EnterStepMode,
-            ActivateModelPartition,
-        ]
-    };
-
     /// The C function, e.g. "fmi3EnterEventMode".
     pub fn function(self) -> String {
         format!("fmi3{self:?}")
@@ -408,16 +389,6 @@ impl Unsupported {
     }
 }
 
-fn c_text(text: &Option<String>) -> Option<CString> {
-    // Interior NULs cannot cross as C strings; cut there, as C would read it.
-    text.as_ref()
-        .map(|t| CString::new(t.split('\0').next().unwrap_or_default()).unwrap_or_default())
-}
-
-fn c_pointer(text: &Option<CString>) -> *const c_char {
-    text.as_ref().map_or(std::ptr::null(), |t| t.as_ptr())
-}
-
 fn boolean(value: bool) -> Boolean {
     if value {
         ffi::TRUE
@@ -457,11 +428,7 @@ impl ImportedInstance {
     ) -> Result<ImportedInstance, Vec<Message>> {
         match Instantiation::new(model_identifier, instance_name) {
             Some(arguments) => ImportedInstance::instantiate(&arguments),
-            None => Err(vec![Message {
-                status: Status::Error as i32,
-                category: "driver".into(),
-                text: format!("no model {model_identifier} in this binary"),
-            }]),
+            None => Err(no_model(model_identifier, Status::Error as i32)),
         }
     }
 
@@ -522,7 +489,7 @@ impl ImportedInstance {
             }
         };
         if handle.is_null() {
-            return Err(std::mem::take(&mut *environment.sink.lock()));
+            return Err(environment.sink.take());
         }
         environment.handle.store(handle as usize, Ordering::SeqCst);
         Ok(ImportedInstance {
@@ -563,22 +530,17 @@ impl ImportedInstance {
 
     /// The messages logged so far, oldest first.
     pub fn messages(&self) -> Vec<Message> {
-        self.environment.sink.lock().clone()
+        self.environment.sink.messages()
     }
 
     /// The text of the last message logged, or "" if none.
     pub fn last_message(&self) -> String {
-        self.environment
-            .sink
-            .lock()
-            .last()
-            .map(|m| m.text.clone())
-            .unwrap_or_default()
+        self.environment.sink.last_text()
     }
 
     /// Removes and returns the messages logged so far.
     pub fn take_messages(&mut self) -> Vec<Message> {
-        std::mem::take(&mut *self.environment.sink.lock())
+        self.environment.sink.take()
     }
 
     /// How often the FMU called the intermediateUpdate callback.
@@ -594,10 +556,7 @@ impl ImportedInstance {
     }
 
     pub fn set_debug_logging(&mut self, logging_on: bool, categories: &[&str]) -> Status {
-        let names: Vec<CString> = categories
-            .iter()
-            .map(|c| CString::new(c.replace('\0', "")).unwrap_or_default())
-            .collect();
+        let names = c_strings(categories);
         let pointers: Vec<FmiString> = names.iter().map(|c| c.as_ptr()).collect();
         // SAFETY: `pointers` holds `len` live C strings.
         unsafe {
@@ -892,41 +851,32 @@ impl ImportedInstance {
     /// fmi3GetFMUState into a new state.
     pub fn get_fmu_state(&mut self) -> Result<State, Status> {
         let mut state = State::NULL;
-        match self.update_fmu_state(&mut state) {
-            Status::Ok => Ok(state),
-            status => Err(status),
-        }
+        let status = self.update_fmu_state(&mut state);
+        ok_then(status, Status::Ok, state)
     }
 
     /// fmi3GetFMUState into `state`: a new one if it is NULL, else the FMU overwrites it (if it
     /// is one of this instance's) or refuses.
     pub fn update_fmu_state(&mut self, state: &mut State) -> Status {
-        let mut slot = state.address() as FmuState;
         // SAFETY: `slot` is a valid fmi3FMUState to write to; its value is checked by the FMU.
-        let status = unsafe { fmi3GetFMUState(self.c(), &mut slot) };
-        *state = State::from_address(slot as usize);
-        status
+        state.through(|slot| unsafe { fmi3GetFMUState(self.c(), slot) })
     }
 
     pub fn set_fmu_state(&mut self, state: State) -> Status {
         // SAFETY: the FMU only dereferences states in this instance's list.
-        unsafe { fmi3SetFMUState(self.c(), state.address() as FmuState) }
+        unsafe { fmi3SetFMUState(self.c(), state.pointer()) }
     }
 
     /// fmi3FreeFMUState; on success `state` becomes NULL.
     pub fn free_fmu_state(&mut self, state: &mut State) -> Status {
-        let mut slot = state.address() as FmuState;
         // SAFETY: as for `update_fmu_state`.
-        let status = unsafe { fmi3FreeFMUState(self.c(), &mut slot) };
-        *state = State::from_address(slot as usize);
-        status
+        state.through(|slot| unsafe { fmi3FreeFMUState(self.c(), slot) })
     }
 
     pub fn serialized_fmu_state_size(&mut self, state: State) -> (Status, usize) {
         let mut size = 0;
         // SAFETY: `size` is a valid size_t; the state is checked by the FMU.
-        let status =
-            unsafe { fmi3SerializedFMUStateSize(self.c(), state.address() as FmuState, &mut size) };
+        let status = unsafe { fmi3SerializedFMUStateSize(self.c(), state.pointer(), &mut size) };
         (status, size)
     }
 
@@ -934,45 +884,31 @@ impl ImportedInstance {
     pub fn serialize_fmu_state_into(&mut self, state: State, buffer: &mut [u8]) -> Status {
         // SAFETY: `buffer` has room for the size passed.
         unsafe {
-            fmi3SerializeFMUState(
-                self.c(),
-                state.address() as FmuState,
-                buffer.as_mut_ptr(),
-                buffer.len(),
-            )
+            fmi3SerializeFMUState(self.c(), state.pointer(), buffer.as_mut_ptr(), buffer.len())
         }
     }
 
     /// fmi3SerializedFMUStateSize, then fmi3SerializeFMUState into a buffer of that size.
     pub fn serialize_fmu_state(&mut self, state: State) -> Result<Vec<u8>, Status> {
-        let (status, size) = self.serialized_fmu_state_size(state);
-        if status != Status::Ok {
-            return Err(status);
-        }
-        let mut bytes = vec![0; size];
-        match self.serialize_fmu_state_into(state, &mut bytes) {
-            Status::Ok => Ok(bytes),
-            status => Err(status),
-        }
+        let size = self.serialized_fmu_state_size(state);
+        serialized(Status::Ok, size, |bytes| {
+            self.serialize_fmu_state_into(state, bytes)
+        })
     }
 
     /// fmi3DeserializeFMUState into a new state.
     pub fn deserialize_fmu_state(&mut self, bytes: &[u8]) -> Result<State, Status> {
         let mut state = State::NULL;
-        match self.deserialize_fmu_state_into(bytes, &mut state) {
-            Status::Ok => Ok(state),
-            status => Err(status),
-        }
+        let status = self.deserialize_fmu_state_into(bytes, &mut state);
+        ok_then(status, Status::Ok, state)
     }
 
     /// fmi3DeserializeFMUState into `state` (overwritten if it is one of this instance's).
     pub fn deserialize_fmu_state_into(&mut self, bytes: &[u8], state: &mut State) -> Status {
-        let mut slot = state.address() as FmuState;
         // SAFETY: `bytes` holds the size passed; `slot` as for `update_fmu_state`.
-        let status =
-            unsafe { fmi3DeserializeFMUState(self.c(), bytes.as_ptr(), bytes.len(), &mut slot) };
-        *state = State::from_address(slot as usize);
-        status
+        state.through(|slot| unsafe {
+            fmi3DeserializeFMUState(self.c(), bytes.as_ptr(), bytes.len(), slot)
+        })
     }
 
     /// One of the functions these FMUs leave out (see [`Unsupported`]).
@@ -1022,14 +958,11 @@ impl ImportedInstance {
                 GetFmuStateSlot => fmi3GetFMUState(c, null_state),
                 FreeFmuStateSlot => fmi3FreeFMUState(c, null_state),
                 SerializedSizeOut(state) => {
-                    fmi3SerializedFMUStateSize(c, state.address() as FmuState, std::ptr::null_mut())
+                    fmi3SerializedFMUStateSize(c, state.pointer(), std::ptr::null_mut())
                 }
-                SerializeBuffer(state) => fmi3SerializeFMUState(
-                    c,
-                    state.address() as FmuState,
-                    std::ptr::null_mut(),
-                    1000,
-                ),
+                SerializeBuffer(state) => {
+                    fmi3SerializeFMUState(c, state.pointer(), std::ptr::null_mut(), 1000)
+                }
                 DeserializeBytes => fmi3DeserializeFMUState(c, std::ptr::null(), 8, &mut slot),
                 DeserializeSlot => {
                     let bytes = [0_u8; 64];

@@ -3,9 +3,9 @@
 //! a model differ only in what each standard spells differently.
 
 use super::fmi3_xml::*;
-use super::xml::{causality, finite, number, variability, Category, LogCategories};
+use super::xml::{to_xml, KindXml, VariableHead};
 use super::Description;
-use crate::variables::variable::{Causality, Kind, Variability, Variable, LOG_CATEGORIES};
+use crate::variables::variable::{Causality, Variability, Variable};
 
 /// The value reference of `time`, the independent variable FMI 3.0 requires every FMU to
 /// declare (FMI 2.0 leaves it implicit); no table uses it.
@@ -17,88 +17,47 @@ pub const TIME_NAME: &str = "time";
 /// What `logCalls` logs, in FMI 3.0's names; the categories are those of FMI 2.0.
 const LOG_CALLS: &str = "The calls that change the instance, with their arguments: fmi3Enter/ExitInitializationMode, fmi3SetXXX, fmi3DoStep, fmi3Get/Set/DeSerializeFMUState, fmi3Terminate, fmi3Reset";
 
-fn log_categories3() -> LogCategories<'static> {
-    LogCategories {
-        categories: LOG_CATEGORIES
-            .iter()
-            .map(|&(name, description)| Category {
-                name,
-                description: if name == "logCalls" {
-                    LOG_CALLS
-                } else {
-                    description
-                },
-            })
-            .collect(),
-    }
-}
-
 impl Description<'_> {
     /// The FMI 3.0 modelDescription.xml. Its instantiationToken is `token`: the GUID of the FMI
     /// 2.0 description ([`Description::write`]), so that one library checks one string whichever
     /// standard instantiates it.
     pub fn write_fmi3(&self, token: &str) -> String {
-        to_xml3(&self.model_description3(token))
+        to_xml(&self.model_description3(token))
     }
 
+    /// The variable with the type attributes FMI 2.0 writes ([`Description::kind`]), on the
+    /// element FMI 3.0 names after the type.
     fn variable3<'b>(&'b self, v: &'b Variable) -> Variable3<'b> {
-        let start = self.start(v);
-        let (causality, variability) = (causality(v.causality), variability(v.variability));
-        match v.kind {
-            Kind::Real {
-                start: table_start,
+        let head = self.variable_head(v);
+        match self.kind(v) {
+            KindXml::Real {
                 unit,
+                start,
                 min,
                 max,
             } => Variable3::Float64 {
-                name: v.name,
-                value_reference: v.value_reference,
-                description: v.description.to_string(),
-                causality,
-                variability,
+                head,
                 // Every continuous input is read at the FMU's own steps inside a doStep.
                 intermediate_update: (v.causality == Causality::Input
                     && v.variability == Variability::Continuous)
                     .then_some(true),
-                unit: (!unit.is_empty()).then_some(unit),
-                // Calculated outputs may not carry a start value.
-                start: (v.causality != Causality::Output)
-                    .then(|| number(start.unwrap_or(table_start))),
-                min: finite(min),
-                max: finite(max),
+                unit,
+                start,
+                min,
+                max,
             },
-            Kind::Integer {
-                start: table_start,
+            KindXml::Integer {
+                declared_type,
+                start,
                 min,
                 max,
             } => Variable3::Int32 {
-                name: v.name,
-                value_reference: v.value_reference,
-                description: v.description.to_string(),
-                causality,
-                variability,
-                declared_type: None,
-                start: start.map_or(table_start, |x| x as i32),
+                head,
+                declared_type,
+                start,
                 min,
                 max,
             },
-            Kind::Switch {
-                type_name,
-                start: table_start,
-            } => {
-                let enum_type = self.switch_type(type_name);
-                Variable3::Int32 {
-                    name: v.name,
-                    value_reference: v.value_reference,
-                    description: format!("{} ({})", v.description, enum_type.listing()),
-                    causality,
-                    variability,
-                    declared_type: Some(type_name),
-                    start: start.map_or(table_start, |x| x as i32),
-                    min: 1,
-                    max: enum_type.items.len() as i32,
-                }
-            }
         }
     }
 
@@ -114,11 +73,13 @@ impl Description<'_> {
 
     fn time_variable() -> Variable3<'static> {
         Variable3::Float64 {
-            name: TIME_NAME,
-            value_reference: TIME_VALUE_REFERENCE,
-            description: "Simulation time".to_string(),
-            causality: "independent",
-            variability: "continuous",
+            head: VariableHead {
+                name: TIME_NAME,
+                value_reference: TIME_VALUE_REFERENCE,
+                description: "Simulation time".to_string(),
+                causality: "independent",
+                variability: "continuous",
+            },
             intermediate_update: None,
             unit: Some("s"),
             start: None,
@@ -128,34 +89,19 @@ impl Description<'_> {
     }
 
     fn model_structure3(&self) -> ModelStructure3 {
-        // A dependency on an input the list leaves out (a variant's hidden input, held at its
-        // value) is no dependency, as in FMI 2.0.
-        let listed = |vr: &&u32| self.variables.iter().any(|v| v.value_reference == **vr);
-        let outputs: Vec<&Variable> = self
-            .variables
-            .iter()
-            .copied()
-            .filter(|v| v.causality == Causality::Output)
-            .collect();
+        let outputs = self.outputs();
         ModelStructure3 {
             outputs: outputs
                 .iter()
-                .map(|v| Unknown3 {
+                .map(|&(_, v)| Unknown3 {
                     value_reference: v.value_reference,
-                    dependencies: Some(
-                        v.depends_on
-                            .iter()
-                            .filter(listed)
-                            .map(u32::to_string)
-                            .collect::<Vec<_>>()
-                            .join(" "),
-                    ),
+                    dependencies: Some(self.dependencies(v, |_, vr| vr.to_string())),
                 })
                 .collect(),
             // Every output is calculated at initialisation from all parameters and inputs.
             initial_unknowns: outputs
                 .iter()
-                .map(|v| Unknown3 {
+                .map(|&(_, v)| Unknown3 {
                     value_reference: v.value_reference,
                     dependencies: None,
                 })
@@ -196,9 +142,7 @@ impl Description<'_> {
                     .map(|unit| Float64Type { name: unit, unit })
                     .collect(),
                 types: self
-                    .enum_types
-                    .iter()
-                    .filter(|e| self.uses_type(e.name))
+                    .used_types()
                     .map(|e| Int32Type {
                         name: e.name,
                         description: e.listing(),
@@ -207,7 +151,7 @@ impl Description<'_> {
                     })
                     .collect(),
             },
-            log_categories: log_categories3(),
+            log_categories: Self::log_categories(Some(LOG_CALLS)),
             default_experiment: self.default_experiment(),
             variables: ModelVariables3 { variables },
             structure: self.model_structure3(),

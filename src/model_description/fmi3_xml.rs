@@ -1,7 +1,8 @@
 //! The XML shape of modelDescription.xml (FMI 3.0), as serde structs for quick-xml. Units, log
-//! categories and the default experiment are written as in FMI 2.0 ([`super::xml`]).
+//! categories and the default experiment are written as in FMI 2.0 ([`super::xml`]), and so is
+//! the document around them ([`super::xml::to_xml`]).
 
-use super::xml::{DefaultExperimentXml, LogCategories, UnitDefinitions};
+use super::xml::{DefaultExperimentXml, LogCategories, UnitDefinitions, VariableHead};
 use serde::Serialize;
 
 #[derive(Serialize)]
@@ -118,16 +119,8 @@ pub struct ModelVariables3<'a> {
 #[derive(Serialize)]
 pub enum Variable3<'a> {
     Float64 {
-        #[serde(rename = "@name")]
-        name: &'a str,
-        #[serde(rename = "@valueReference")]
-        value_reference: u32,
-        #[serde(rename = "@description")]
-        description: String,
-        #[serde(rename = "@causality")]
-        causality: &'a str,
-        #[serde(rename = "@variability")]
-        variability: &'a str,
+        #[serde(flatten)]
+        head: VariableHead<'a>,
         /// Only on inputs the FMU reads inside a step (set in Intermediate Update Mode).
         #[serde(
             rename = "@intermediateUpdate",
@@ -145,16 +138,8 @@ pub enum Variable3<'a> {
         max: Option<String>,
     },
     Int32 {
-        #[serde(rename = "@name")]
-        name: &'a str,
-        #[serde(rename = "@valueReference")]
-        value_reference: u32,
-        #[serde(rename = "@description")]
-        description: String,
-        #[serde(rename = "@causality")]
-        causality: &'a str,
-        #[serde(rename = "@variability")]
-        variability: &'a str,
+        #[serde(flatten)]
+        head: VariableHead<'a>,
         #[serde(rename = "@declaredType", skip_serializing_if = "Option::is_none")]
         declared_type: Option<&'a str>,
         #[serde(rename = "@start")]
@@ -181,14 +166,4 @@ pub struct Unknown3 {
     pub value_reference: u32,
     #[serde(rename = "@dependencies", skip_serializing_if = "Option::is_none")]
     pub dependencies: Option<String>,
-}
-
-pub fn to_xml3(description: &ModelDescription3) -> String {
-    let mut body = String::new();
-    let mut serializer = quick_xml::se::Serializer::new(&mut body);
-    serializer.indent(' ', 2);
-    // As in to_xml: plain structs into a String cannot fail, and an empty body fails every
-    // test that reads the XML.
-    let _ = description.serialize(serializer);
-    format!("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n{body}\n")
 }

@@ -80,9 +80,11 @@ impl<'a> Description<'a> {
             .map(|&(_, x)| x)
     }
 
-    fn scalar_variable<'b>(&'b self, v: &'b Variable) -> ScalarVariable<'b> {
+    /// A variable's type attributes, which both standards write alike: FMI 2.0 as the
+    /// ScalarVariable's Real or Integer element, FMI 3.0 on its Float64 or Int32 element.
+    fn kind(&self, v: &Variable) -> KindXml<'static> {
         let start = self.start(v);
-        let kind = match v.kind {
+        match v.kind {
             Kind::Real {
                 start: table_start,
                 unit,
@@ -115,22 +117,36 @@ impl<'a> Description<'a> {
                 min: 1,
                 max: self.switch_type(type_name).items.len() as i32,
             },
-        };
-        let description = match v.kind {
+        }
+    }
+
+    /// A variable's description; a switch's numbers its items, as its type's does.
+    fn variable_description(&self, v: &Variable) -> String {
+        match v.kind {
             Kind::Switch { type_name, .. } => format!(
                 "{} ({})",
                 v.description,
                 self.switch_type(type_name).listing()
             ),
             _ => v.description.to_string(),
-        };
-        ScalarVariable {
+        }
+    }
+
+    /// The attributes both standards start a variable's element with.
+    fn variable_head(&self, v: &Variable) -> VariableHead<'static> {
+        VariableHead {
             name: v.name,
             value_reference: v.value_reference,
-            description,
+            description: self.variable_description(v),
             causality: causality(v.causality),
             variability: variability(v.variability),
-            kind,
+        }
+    }
+
+    fn scalar_variable(&self, v: &Variable) -> ScalarVariable<'static> {
+        ScalarVariable {
+            head: self.variable_head(v),
+            kind: self.kind(v),
         }
     }
 
@@ -147,42 +163,51 @@ impl<'a> Description<'a> {
             .any(|v| matches!(v.kind, Kind::Real { unit, .. } if unit == name))
     }
 
-    fn uses_type(&self, name: &str) -> bool {
-        self.variables
-            .iter()
-            .any(|v| matches!(v.kind, Kind::Switch { type_name, .. } if type_name == name))
-    }
-
-    fn model_structure(&self) -> ModelStructure {
-        // ModelVariables indices are 1-based, in list order. A dependency on an input the list
-        // leaves out (a variant's hidden input, held at its value) is no dependency.
-        let index_of = |vr: u32| {
+    /// The enumeration types the listed switches use, in the model's order.
+    fn used_types(&self) -> impl Iterator<Item = &EnumType> {
+        self.enum_types.iter().filter(|e| {
             self.variables
                 .iter()
-                .position(|v| v.value_reference == vr)
-                .map(|i| i + 1)
-        };
-        let outputs: Vec<(usize, &Variable)> = self
-            .variables
+                .any(|v| matches!(v.kind, Kind::Switch { type_name, .. } if type_name == e.name))
+        })
+    }
+
+    /// The listed outputs with their ModelVariables indices (1-based, in list order).
+    fn outputs(&self) -> Vec<(usize, &Variable)> {
+        self.variables
             .iter()
             .enumerate()
             .filter(|(_, v)| v.causality == Causality::Output)
             .map(|(i, v)| (i + 1, *v))
-            .collect();
+            .collect()
+    }
+
+    /// What `v` depends on, space-separated, each named by `name` from its index and value
+    /// reference (FMI 2.0 names the index, FMI 3.0 the value reference). A dependency on an
+    /// input the list leaves out (a variant's hidden input, held at its value) is no dependency.
+    fn dependencies(&self, v: &Variable, name: impl Fn(usize, u32) -> String) -> String {
+        v.depends_on
+            .iter()
+            .filter_map(|&vr| {
+                let index = self
+                    .variables
+                    .iter()
+                    .position(|v| v.value_reference == vr)?;
+                Some(name(index + 1, vr))
+            })
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+
+    fn model_structure(&self) -> ModelStructure {
+        let outputs = self.outputs();
         ModelStructure {
             outputs: Unknowns {
                 unknowns: outputs
                     .iter()
                     .map(|&(index, v)| Unknown {
                         index,
-                        dependencies: Some(
-                            v.depends_on
-                                .iter()
-                                .filter_map(|&vr| index_of(vr))
-                                .map(|i| i.to_string())
-                                .collect::<Vec<_>>()
-                                .join(" "),
-                        ),
+                        dependencies: Some(self.dependencies(v, |index, _| index.to_string())),
                     })
                     .collect(),
             },
@@ -220,11 +245,19 @@ impl<'a> Description<'a> {
         }
     }
 
-    fn log_categories(&self) -> LogCategories<'static> {
+    /// The log categories, `logCalls` described as `log_calls` if given (each standard names its
+    /// own functions) and as the table has it (FMI 2.0's) if not.
+    fn log_categories(log_calls: Option<&'static str>) -> LogCategories<'static> {
         LogCategories {
             categories: crate::variables::variable::LOG_CATEGORIES
                 .iter()
-                .map(|&(name, description)| Category { name, description })
+                .map(|&(name, description)| Category {
+                    name,
+                    description: match log_calls {
+                        Some(calls) if name == "logCalls" => calls,
+                        _ => description,
+                    },
+                })
                 .collect(),
         }
     }
@@ -263,9 +296,7 @@ impl<'a> Description<'a> {
             units: self.unit_definitions(&|name| self.uses_unit(name)),
             types: TypeDefinitions {
                 types: self
-                    .enum_types
-                    .iter()
-                    .filter(|e| self.uses_type(e.name))
+                    .used_types()
                     .map(|e| SimpleType {
                         name: e.name,
                         description: e.listing(),
@@ -276,7 +307,7 @@ impl<'a> Description<'a> {
                     })
                     .collect(),
             },
-            log_categories: self.log_categories(),
+            log_categories: Self::log_categories(None),
             default_experiment: self.default_experiment(),
             variables: ModelVariables {
                 variables: self

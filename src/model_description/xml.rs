@@ -167,6 +167,17 @@ pub struct ModelVariables<'a> {
 
 #[derive(Serialize)]
 pub struct ScalarVariable<'a> {
+    #[serde(flatten)]
+    pub head: VariableHead<'a>,
+    #[serde(rename = "$value")]
+    pub kind: KindXml<'a>,
+}
+
+/// The attributes every variable's element starts with, in both standards. Flattened into the
+/// element's struct, whose other attributes (and FMI 2.0's type element) follow them, as quick-xml
+/// writes a flattened struct's `@` fields as attributes of the element, in field order.
+#[derive(Serialize)]
+pub struct VariableHead<'a> {
     #[serde(rename = "@name")]
     pub name: &'a str,
     #[serde(rename = "@valueReference")]
@@ -177,8 +188,6 @@ pub struct ScalarVariable<'a> {
     pub causality: &'a str,
     #[serde(rename = "@variability")]
     pub variability: &'a str,
-    #[serde(rename = "$value")]
-    pub kind: KindXml<'a>,
 }
 
 #[derive(Serialize)]
@@ -260,7 +269,9 @@ pub fn finite(x: f64) -> Option<String> {
     x.is_finite().then(|| number(x))
 }
 
-pub fn to_xml(description: &ModelDescription) -> String {
+/// Either standard's description (FMI 3.0's too) as the file's text: indented by two spaces,
+/// after the XML declaration.
+pub fn to_xml(description: &impl Serialize) -> String {
     let mut body = String::new();
     let mut serializer = quick_xml::se::Serializer::new(&mut body);
     serializer.indent(' ', 2);
