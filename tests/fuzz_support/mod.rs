@@ -1,11 +1,17 @@
 //! What the call fuzzers over both FMI boundaries share (tests/fuzz_calls.rs for FMI 2.0,
 //! tests/fuzz_calls_fmi3.rs for FMI 3.0): the deterministic PRNG, the values, value references,
 //! step sizes and corrupted serialized states they pass, and the runner that spreads sequences
-//! over the cores, counts panics and reports hung calls.
+//! over the cores, counts panics and reports hung calls; in its modules, how a sequence is laid
+//! out (sequence.rs), its FMU-state calls (fmu_states.rs) and the promises checked after each
+//! call (checks.rs).
 //!
 //! A deterministic PRNG (splitmix64) makes every sequence reproducible:
 //! `FUZZ_SEED` (default 0x5EED), `FUZZ_SEQUENCES` (default per fuzzer), `FUZZ_ONLY=<n>` reruns
 //! sequence n alone and prints its calls.
+
+pub mod checks;
+pub mod fmu_states;
+pub mod sequence;
 
 use friction_fmu::variables::values::check_value;
 use friction_fmu::variables::variable::{Kind, ModelTable, Variable};
