@@ -28,9 +28,12 @@ use friction_fmu::importer::{
 };
 use friction_fmu::models::MODELS;
 use friction_fmu::variables::variable::{Causality, ModelTable, Variable};
+use fuzz_support::checks;
 use fuzz_support::fmu_states::{self, FmuStates, Made, StateOp};
+use fuzz_support::rng::Rng;
 use fuzz_support::sequence::{self, Calls, Experiment};
-use fuzz_support::{checks, fnv1a, integer_value, real_value, step_size, value_references, Rng};
+use fuzz_support::serialized::fnv1a;
+use fuzz_support::values::{integer_value, real_value, step_size, value_references};
 
 mod fuzz_support;
 
@@ -467,7 +470,7 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
 
 #[test]
 fn random_call_sequences_never_crash_panic_or_lie() {
-    fuzz_support::run(sequence, 100_000);
+    fuzz_support::runner::run(sequence, 100_000);
 }
 
 #[test]

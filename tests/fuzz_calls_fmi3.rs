@@ -35,9 +35,11 @@ use friction_fmu::importer::{self as fmi2, calls_on_component, free_foreign_comp
 use friction_fmu::instance::calls::ValueType;
 use friction_fmu::models::MODELS;
 use friction_fmu::variables::variable::{Causality, Kind, ModelTable};
+use fuzz_support::checks;
 use fuzz_support::fmu_states::{self, FmuStates, Made, StateOp};
+use fuzz_support::rng::Rng;
 use fuzz_support::sequence::{self, Calls, Experiment};
-use fuzz_support::{checks, integer_value, real_value, step_size, value_references, Rng, SPECIAL};
+use fuzz_support::values::{integer_value, real_value, step_size, value_references, SPECIAL};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 
@@ -689,7 +691,7 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
 
 #[test]
 fn random_fmi3_call_sequences_never_crash_panic_or_lie() {
-    fuzz_support::run(sequence, 50_000);
+    fuzz_support::runner::run(sequence, 50_000);
 }
 
 #[test]

@@ -4,7 +4,8 @@
 //! those the sequence made (freed, of the other instance, or NULL).
 
 use super::checks::FmiStatus;
-use super::{mutate, Rng};
+use super::rng::Rng;
+use super::serialized::mutate;
 use friction_fmu::importer::State;
 
 /// One FMU-state call.

@@ -3,7 +3,8 @@
 //! the arguments both standards' calls draw alike (an experiment's times, a step's communication
 //! point, debug-logging categories).
 
-use super::{Rng, SPECIAL};
+use super::rng::Rng;
+use super::values::SPECIAL;
 use friction_fmu::models::MODELS;
 use friction_fmu::variables::variable::ModelTable;
 
