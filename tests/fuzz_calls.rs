@@ -247,16 +247,8 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
     for call in 0..calls.count {
         let (k, op) = calls.get(call, &mut rng, slots.len(), &ops);
         if let Op::Reinstantiate = op {
-            let table = sequence::any_model(&mut rng);
-            // A slot whose instance was freed keeps its handle beside the new instance (which
-            // may take the freed memory), so later calls test that the handle stays dead.
-            let keep = slots[k].as_ref().is_some_and(|s| s.instance.is_freed()) && slots.len() < 4;
-            match instantiate(&mut rng, table, "again") {
-                Ok(slot) if keep => slots.push(Some(slot)),
-                Ok(slot) => slots[k] = Some(slot),
-                Err(e) if e.is_empty() => {}
-                Err(e) => return Err(e),
-            }
+            let freed = |s: &Slot| s.instance.is_freed();
+            sequence::reinstantiate(&mut rng, &mut slots, k, freed, instantiate)?;
             continue;
         }
         let Some(slot) = slots[k].as_mut() else {

@@ -437,20 +437,10 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
     for call in 0..calls.count {
         let (k, op) = calls.get(call, &mut rng, slots.len(), &ops);
         if let Op::Reinstantiate = op {
-            let table = sequence::any_model(&mut rng);
-            // A slot whose instance was freed keeps its handle beside the new instance, so
-            // later calls test that the handle stays dead.
-            let keep = slots[k].as_ref().is_some_and(|s| s.freed()) && slots.len() < 4;
-            match instantiate(&mut rng, table, "again") {
-                Ok(slot) if keep => slots.push(Some(slot)),
-                Ok(slot) => {
-                    if let Some(old) = slots[k].replace(slot) {
-                        freed_handles.push(old.instance.handle());
-                    }
-                }
-                Err(e) if e.is_empty() => {}
-                Err(e) => return Err(e),
-            }
+            let replaced =
+                sequence::reinstantiate(&mut rng, &mut slots, k, Slot::freed, instantiate)?;
+            // The replaced instance is dropped, which frees it: its handle must stay refused.
+            freed_handles.extend(replaced.map(|old| old.instance.handle()));
             continue;
         }
         let Some(slot) = slots[k].as_mut() else {

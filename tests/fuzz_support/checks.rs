@@ -13,23 +13,22 @@ pub trait FmiStatus: Copy + PartialEq + Debug {
     fn code(self) -> i32;
 }
 
-impl FmiStatus for friction_fmu::fmi2::ffi::Status {
-    const OK: Self = Self::Ok;
-    const WARNING: Self = Self::Warning;
-    const ERROR: Self = Self::Error;
-    fn code(self) -> i32 {
-        self as i32
-    }
+/// Implements [`FmiStatus`] for a standard's status enum, whose variants are named alike.
+macro_rules! fmi_status {
+    ($status:ty) => {
+        impl FmiStatus for $status {
+            const OK: Self = Self::Ok;
+            const WARNING: Self = Self::Warning;
+            const ERROR: Self = Self::Error;
+            fn code(self) -> i32 {
+                self as i32
+            }
+        }
+    };
 }
 
-impl FmiStatus for friction_fmu::fmi3::ffi::Status {
-    const OK: Self = Self::Ok;
-    const WARNING: Self = Self::Warning;
-    const ERROR: Self = Self::Error;
-    fn code(self) -> i32 {
-        self as i32
-    }
-}
+fmi_status!(friction_fmu::fmi2::ffi::Status);
+fmi_status!(friction_fmu::fmi3::ffi::Status);
 
 /// Whether a message of Warning or worse names `function`: what explains a refusal.
 pub fn explained<S: FmiStatus>(messages: &[Message], function: &str) -> bool {

@@ -44,6 +44,30 @@ pub fn first_two<S>(
     Ok((first, slots))
 }
 
+/// A new instance "again" of a model at random for slot `k`: beside the slot's instance where that
+/// was `freed` and there are fewer than four (the freed handle is kept, so later calls test that it
+/// stays dead, also when the new instance takes the freed memory), else in its place. Returns the
+/// instance it replaced; Err(why) for a broken promise, a rightful refusal changes nothing.
+pub fn reinstantiate<S>(
+    rng: &mut Rng,
+    slots: &mut Vec<Option<S>>,
+    k: usize,
+    freed: impl Fn(&S) -> bool,
+    mut instantiate: impl FnMut(&mut Rng, &'static ModelTable, &str) -> Result<S, String>,
+) -> Result<Option<S>, String> {
+    let table = any_model(rng);
+    let keep = slots[k].as_ref().is_some_and(freed) && slots.len() < 4;
+    match instantiate(rng, table, "again") {
+        Ok(slot) if keep => {
+            slots.push(Some(slot));
+            Ok(None)
+        }
+        Ok(slot) => Ok(slots[k].replace(slot)),
+        Err(e) if e.is_empty() => Ok(None),
+        Err(e) => Err(e),
+    }
+}
+
 /// The calls of a sequence: planned ones first, then random ones.
 pub struct Calls<Op> {
     planned: Vec<(usize, Op)>,
