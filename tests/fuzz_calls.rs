@@ -28,9 +28,12 @@ use friction_fmu::importer::{
 };
 use friction_fmu::models::MODELS;
 use friction_fmu::variables::variable::{Causality, ModelTable, Variable};
-use fuzz_support::{
-    fnv1a, integer_value, mutate, real_value, step_size, value_references, Rng, SPECIAL,
-};
+use fuzz_support::checks;
+use fuzz_support::fmu_states::{self, FmuStates, Made, StateOp};
+use fuzz_support::rng::Rng;
+use fuzz_support::sequence::{self, Calls, Experiment};
+use fuzz_support::serialized::fnv1a;
+use fuzz_support::values::{integer_value, real_value, step_size, value_references};
 
 mod fuzz_support;
 
@@ -39,8 +42,6 @@ mod fuzz_support;
 enum Op {
     /// fmi2SetupExperiment with valid arguments, to get past Instantiated more often.
     SetupExperimentValid,
-    /// fmi2GetFMUstate, serialize it into the pool of bytes to corrupt, free it.
-    SeedBytes,
     SetupExperiment,
     EnterInitialization,
     ExitInitialization,
@@ -61,14 +62,8 @@ enum Op {
     GetIntegerStatus,
     GetBooleanStatus,
     GetStringStatus,
-    GetFmuState,
-    UpdateFmuState,
-    SetFmuState,
-    FreeFmuState,
-    SerializedSize,
-    Serialize,
-    Deserialize,
-    DeserializeInto,
+    /// An FMU-state call (tests/fuzz_support/fmu_states.rs).
+    State(StateOp),
     DirectionalDerivative,
     InputDerivatives,
     OutputDerivatives,
@@ -81,65 +76,59 @@ enum Op {
     Reinstantiate,
 }
 
-const OPS: &[Op] = &[
-    Op::SetupExperiment,
-    Op::EnterInitialization,
-    Op::ExitInitialization,
-    Op::Terminate,
-    Op::Reset,
-    Op::SetReal,
-    Op::SetReal,
-    Op::SetReal,
-    Op::SetInteger,
-    Op::SetInteger,
-    Op::SetBoolean,
-    Op::SetString,
-    Op::GetReal,
-    Op::GetReal,
-    Op::GetReal,
-    Op::GetInteger,
-    Op::GetBoolean,
-    Op::GetString,
-    Op::DoStep,
-    Op::DoStep,
-    Op::DoStep,
-    Op::DoStep,
-    Op::DoStep,
-    Op::CancelStep,
-    Op::GetStatus,
-    Op::GetRealStatus,
-    Op::GetIntegerStatus,
-    Op::GetBooleanStatus,
-    Op::GetStringStatus,
-    Op::GetFmuState,
-    Op::GetFmuState,
-    Op::UpdateFmuState,
-    Op::SetFmuState,
-    Op::SetFmuState,
-    Op::FreeFmuState,
-    Op::SerializedSize,
-    Op::Serialize,
-    Op::Serialize,
-    Op::Deserialize,
-    Op::Deserialize,
-    Op::DeserializeInto,
-    Op::DirectionalDerivative,
-    Op::InputDerivatives,
-    Op::OutputDerivatives,
-    Op::DebugLogging,
-    Op::Null,
-    Op::Free,
-    Op::FreeTwice,
-    Op::FreeKeepingHandle,
-    Op::Reinstantiate,
-    Op::Reinstantiate,
-];
+/// The random calls, each as often as it stands here (the FMU-state calls as in fuzz_support).
+fn random_ops() -> Vec<Op> {
+    let mut ops = vec![
+        Op::SetupExperiment,
+        Op::EnterInitialization,
+        Op::ExitInitialization,
+        Op::Terminate,
+        Op::Reset,
+        Op::SetReal,
+        Op::SetReal,
+        Op::SetReal,
+        Op::SetInteger,
+        Op::SetInteger,
+        Op::SetBoolean,
+        Op::SetString,
+        Op::GetReal,
+        Op::GetReal,
+        Op::GetReal,
+        Op::GetInteger,
+        Op::GetBoolean,
+        Op::GetString,
+        Op::DoStep,
+        Op::DoStep,
+        Op::DoStep,
+        Op::DoStep,
+        Op::DoStep,
+        Op::CancelStep,
+        Op::GetStatus,
+        Op::GetRealStatus,
+        Op::GetIntegerStatus,
+        Op::GetBooleanStatus,
+        Op::GetStringStatus,
+    ];
+    ops.extend(fmu_states::RANDOM.map(Op::State));
+    ops.extend([
+        Op::DirectionalDerivative,
+        Op::InputDerivatives,
+        Op::OutputDerivatives,
+        Op::DebugLogging,
+        Op::Null,
+        Op::Free,
+        Op::FreeTwice,
+        Op::FreeKeepingHandle,
+        Op::Reinstantiate,
+        Op::Reinstantiate,
+    ]);
+    ops
+}
 
 impl Op {
     fn function(self) -> &'static str {
         match self {
             Op::SetupExperiment | Op::SetupExperimentValid => "fmi2SetupExperiment",
-            Op::SeedBytes => "fmi2GetFMUstate",
             Op::EnterInitialization => "fmi2EnterInitializationMode",
             Op::ExitInitialization => "fmi2ExitInitializationMode",
             Op::Terminate => "fmi2Terminate",
@@ -159,12 +148,7 @@ impl Op {
             Op::GetIntegerStatus => "fmi2GetIntegerStatus",
             Op::GetBooleanStatus => "fmi2GetBooleanStatus",
             Op::GetStringStatus => "fmi2GetStringStatus",
-            Op::GetFmuState | Op::UpdateFmuState => "fmi2GetFMUstate",
-            Op::SetFmuState => "fmi2SetFMUstate",
-            Op::FreeFmuState => "fmi2FreeFMUstate",
-            Op::SerializedSize => "fmi2SerializedFMUstateSize",
-            Op::Serialize => "fmi2SerializeFMUstate",
-            Op::Deserialize | Op::DeserializeInto => "fmi2DeSerializeFMUstate",
+            Op::State(op) => <ImportedInstance as FmuStates>::function(op),
             Op::DirectionalDerivative => "fmi2GetDirectionalDerivative",
             Op::InputDerivatives => "fmi2SetRealInputDerivatives",
             Op::OutputDerivatives => "fmi2GetRealOutputDerivatives",
@@ -245,58 +229,26 @@ fn instantiate(rng: &mut Rng, table: &'static ModelTable, name: &str) -> Result<
 
 /// Runs sequence `index`; the error describes the first broken promise.
 fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
-    // Serialized states made in this sequence, raw material for corrupted ones.
-    let mut blobs: Vec<Vec<u8>> = Vec::new();
-    let blobs = &mut blobs;
-    let mut rng = Rng(seed ^ index.wrapping_mul(0xD6E8_FEB8_6659_FD93));
-    let first = MODELS[rng.below(MODELS.len())].table;
-    let second = if rng.chance(70) {
-        first
-    } else {
-        MODELS[rng.below(MODELS.len())].table
-    };
-    let mut slots: Vec<Option<Slot>> = Vec::new();
-    for (k, table) in [first, second].into_iter().enumerate() {
-        match instantiate(&mut rng, table, &format!("fuzz{k}")) {
-            Ok(slot) => slots.push(Some(slot)),
-            Err(e) if e.is_empty() => slots.push(None),
-            Err(e) => return Err(e),
-        }
-    }
-    let mut states: Vec<State> = vec![State::NULL];
-    // Most sequences first bring their instances to StepComplete (with some parameters set on
-    // the way), so that the random calls after that reach the stepping phases often.
-    let mut plan = Vec::new();
-    for k in 0..slots.len() {
-        if rng.chance(75) {
-            plan.extend((0..rng.below(4)).map(|_| (k, rng.pick(&[Op::SetReal, Op::SetInteger]))));
-            plan.extend([
-                (k, Op::SetupExperimentValid),
-                (k, Op::EnterInitialization),
-                (k, Op::ExitInitialization),
-            ]);
-        }
-        if rng.chance(50) {
-            plan.push((k, Op::SeedBytes));
-        }
-    }
-    let calls = plan.len() + 1 + rng.below(60);
-    for call in 0..calls {
-        let (k, op) = match plan.get(call) {
-            Some(&planned) => planned,
-            None => (rng.below(slots.len()), rng.pick(OPS)),
-        };
+    let mut rng = sequence::rng_of(seed, index);
+    let (_, mut slots) = sequence::first_two(&mut rng, instantiate)?;
+    let mut made = Made::new();
+    let calls = Calls::new(
+        &mut rng,
+        slots.len(),
+        |rng| rng.pick(&[Op::SetReal, Op::SetInteger]),
+        &[
+            Op::SetupExperimentValid,
+            Op::EnterInitialization,
+            Op::ExitInitialization,
+        ],
+        Op::State(StateOp::SeedBytes),
+    );
+    let ops = random_ops();
+    for call in 0..calls.count {
+        let (k, op) = calls.get(call, &mut rng, slots.len(), &ops);
         if let Op::Reinstantiate = op {
-            let table = MODELS[rng.below(MODELS.len())].table;
-            // A slot whose instance was freed keeps its handle beside the new instance (which
-            // may take the freed memory), so later calls test that the handle stays dead.
-            let keep = slots[k].as_ref().is_some_and(|s| s.instance.is_freed()) && slots.len() < 4;
-            match instantiate(&mut rng, table, "again") {
-                Ok(slot) if keep => slots.push(Some(slot)),
-                Ok(slot) => slots[k] = Some(slot),
-                Err(e) if e.is_empty() => {}
-                Err(e) => return Err(e),
-            }
+            let freed = |s: &Slot| s.instance.is_freed();
+            sequence::reinstantiate(&mut rng, &mut slots, k, freed, instantiate)?;
             continue;
         }
         let Some(slot) = slots[k].as_mut() else {
@@ -307,43 +259,22 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
             // Before the call too, so a hanging call shows which it is.
             println!("{call:3}: [{k}] {op:?} ...");
         }
-        let state = rng.pick(&states);
+        let state = rng.pick(&made.states);
         let live = !slot.instance.is_freed();
         let mut function = op.function();
         let mut description = String::new();
         let status: Option<Status> = match op {
-            Op::SetupExperimentValid => {
-                let stop = rng.chance(50).then_some(table.default_experiment.stop_time);
-                description = format!("(None, 0, {stop:?})");
-                let status = slot.instance.setup_experiment(None, 0.0, stop);
-                if status == Status::Ok {
-                    slot.time = 0.0;
-                }
-                Some(status)
-            }
-            Op::SeedBytes => match slot.instance.get_fmu_state() {
-                Ok(mut state) => {
-                    let bytes = slot.instance.serialize_fmu_state(state);
-                    blobs.extend(bytes);
-                    Some(slot.instance.free_fmu_state(&mut state))
-                }
-                Err(status) => Some(status),
-            },
-            Op::SetupExperiment => {
-                let tolerance = rng.chance(50).then(|| rng.pick(SPECIAL).abs());
-                let start = if rng.chance(70) {
-                    0.0
-                } else {
-                    rng.pick(SPECIAL)
+            Op::SetupExperimentValid | Op::SetupExperiment => {
+                let experiment = match op {
+                    Op::SetupExperimentValid => Experiment::valid(&mut rng, table),
+                    _ => Experiment::random(&mut rng, table),
                 };
-                let stop = rng.chance(40).then(|| {
-                    if rng.chance(70) {
-                        start + table.default_experiment.stop_time
-                    } else {
-                        rng.pick(SPECIAL)
-                    }
-                });
-                description = format!("({tolerance:?}, {start}, {stop:?})");
+                description = experiment.describe();
+                let Experiment {
+                    tolerance,
+                    start,
+                    stop,
+                } = experiment;
                 let status = slot.instance.setup_experiment(tolerance, start, stop);
                 if status == Status::Ok {
                     slot.time = start;
@@ -393,11 +324,7 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
                 let vrs = value_references(&mut rng, table);
                 let (status, values) = slot.instance.get_real(&vrs);
                 description = format!("({vrs:?}) = {values:?}");
-                if status == Status::Ok && values.iter().any(|x| !x.is_finite()) {
-                    return Err(format!(
-                        "call {call}: fmi2GetReal{description} returned OK with a non-finite value"
-                    ));
-                }
+                checks::finite_when_ok(call, function, &description, status, &values)?;
                 Some(status)
             }
             Op::GetInteger => {
@@ -414,19 +341,7 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
             }
             Op::DoStep => {
                 let h = step_size(&mut rng, table);
-                let t = if rng.chance(85) {
-                    slot.time
-                } else {
-                    rng.pick(&[
-                        slot.time + 1e-3,
-                        slot.time - h,
-                        f64::NAN,
-                        f64::INFINITY,
-                        0.0,
-                        -1.0,
-                        slot.time * (1.0 + 1e-15),
-                    ])
-                };
+                let t = sequence::communication_point(&mut rng, slot.time, h);
                 description = format!("(t = {t}, h = {h})");
                 if verbose {
                     println!("     {description}");
@@ -456,95 +371,19 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
                 Some(slot.instance.get_boolean_status(rng.pick(&[3, 3, 0, -5])).0)
             }
             Op::GetStringStatus => Some(slot.instance.get_string_status(rng.pick(&[1, 0, 4]))),
-            Op::GetFmuState => match slot.instance.get_fmu_state() {
-                Ok(state) => {
-                    states.push(state);
-                    Some(Status::Ok)
-                }
-                Err(status) => Some(status),
-            },
-            Op::UpdateFmuState => {
-                let mut target = state;
-                description = format!("({:#x})", state.address());
-                let status = slot.instance.update_fmu_state(&mut target);
-                states.push(target);
-                Some(status)
-            }
-            Op::SetFmuState => {
-                description = format!("({:#x})", state.address());
-                let status = slot.instance.set_fmu_state(state);
-                Some(status)
-            }
-            Op::FreeFmuState => {
-                let mut target = state;
-                description = format!("({:#x})", state.address());
-                Some(slot.instance.free_fmu_state(&mut target))
-            }
-            Op::SerializedSize => Some(slot.instance.serialized_fmu_state_size(state).0),
-            Op::Serialize => {
-                let (status, size) = slot.instance.serialized_fmu_state_size(state);
-                if status != Status::Ok {
-                    function = "fmi2SerializedFMUstateSize";
-                    Some(status)
-                } else {
-                    let room = match rng.below(4) {
-                        0 => 0,
-                        1 => size.saturating_sub(1 + rng.below(size.max(1))),
-                        _ => size + rng.below(3) * 8,
-                    };
-                    let mut bytes = vec![0; room];
-                    let status = slot.instance.serialize_fmu_state_into(state, &mut bytes);
-                    if status == Status::Ok {
-                        bytes.truncate(size);
-                        if blobs.len() < 64 {
-                            blobs.push(bytes);
-                        } else {
-                            let i = rng.below(blobs.len());
-                            blobs[i] = bytes;
-                        }
-                    } else if room >= size {
-                        return Err(format!(
-                            "call {call}: fmi2SerializeFMUstate refused a buffer of {room} >= {size} bytes: {}",
-                            slot.instance.last_message()
-                        ));
-                    }
-                    Some(status)
-                }
-            }
-            Op::Deserialize | Op::DeserializeInto => {
-                let (bytes, note) = mutate(&mut rng, blobs);
-                description = format!("({} bytes{note})", bytes.len());
-                if verbose && bytes.len() > 20 {
-                    let start = 12
-                        + u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize;
-                    let numbers: Vec<f64> = bytes
-                        .get(start..bytes.len() - 8)
-                        .unwrap_or(&[])
-                        .chunks_exact(8)
-                        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
-                        .collect();
-                    println!("     numbers {numbers:?}");
-                    println!(
-                        "     hex {}",
-                        bytes.iter().map(|b| format!("{b:02x}")).collect::<String>()
-                    );
-                }
-                if let Op::Deserialize = op {
-                    match slot.instance.deserialize_fmu_state(&bytes) {
-                        Ok(state) => {
-                            states.push(state);
-                            Some(Status::Ok)
-                        }
-                        Err(status) => Some(status),
-                    }
-                } else {
-                    let mut target = state;
-                    let status = slot
-                        .instance
-                        .deserialize_fmu_state_into(&bytes, &mut target);
-                    states.push(target);
-                    Some(status)
-                }
+            Op::State(op) => {
+                let called = fmu_states::call(
+                    op,
+                    &mut slot.instance,
+                    &mut rng,
+                    state,
+                    &mut made,
+                    call,
+                    verbose,
+                )?;
+                function = called.function;
+                description = called.description;
+                Some(called.status)
             }
             Op::DirectionalDerivative => {
                 let unknowns = value_references(&mut rng, table);
@@ -571,12 +410,7 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
                 Some(slot.instance.get_real_output_derivatives(&vrs, &orders))
             }
             Op::DebugLogging => {
-                let n = rng.below(3);
-                let categories: Vec<&str> = (0..n)
-                    .map(|_| {
-                        rng.pick(&["logCalls", "logStatusError", "logStatusWarning", "nope", ""])
-                    })
-                    .collect();
+                let categories = sequence::debug_categories(&mut rng);
                 Some(slot.instance.set_debug_logging(rng.chance(50), &categories))
             }
             Op::Null => {
@@ -604,26 +438,16 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
             println!("{call:3}: [{k}] {function}{description} -> {status:?} {messages:?}");
         }
         let Some(status) = status else { continue };
-        if status == Status::Pending {
-            return Err(format!(
-                "call {call}: {function}{description} returned fmi2Pending"
-            ));
-        }
-        if !live {
-            if status != Status::Error || !messages.is_empty() {
-                return Err(format!(
-                    "call {call}: {function} on a freed instance gave {status:?} {messages:?}"
-                ));
-            }
-        } else if status != Status::Ok
-            && !messages
-                .iter()
-                .any(|m| m.status >= Status::Warning as i32 && m.text.contains(function))
-        {
-            return Err(format!(
-                "call {call}: {function}{description} returned {status:?} without a message naming it: {messages:?}"
-            ));
-        }
+        // Every instance of this fuzzer has a logger.
+        checks::status_kept_its_promises(
+            call,
+            function,
+            &description,
+            status,
+            live,
+            true,
+            &messages,
+        )?;
     }
     if rng.chance(1) {
         free_null_instance();
@@ -638,7 +462,7 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
 
 #[test]
 fn random_call_sequences_never_crash_panic_or_lie() {
-    fuzz_support::run(sequence, 100_000);
+    fuzz_support::runner::run(sequence, 100_000);
 }
 
 #[test]

@@ -35,7 +35,11 @@ use friction_fmu::importer::{self as fmi2, calls_on_component, free_foreign_comp
 use friction_fmu::instance::calls::ValueType;
 use friction_fmu::models::MODELS;
 use friction_fmu::variables::variable::{Causality, Kind, ModelTable};
-use fuzz_support::{integer_value, mutate, real_value, step_size, value_references, Rng, SPECIAL};
+use fuzz_support::checks;
+use fuzz_support::fmu_states::{self, FmuStates, Made, StateOp};
+use fuzz_support::rng::Rng;
+use fuzz_support::sequence::{self, Calls, Experiment};
+use fuzz_support::values::{integer_value, real_value, step_size, value_references, SPECIAL};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 
@@ -47,8 +51,6 @@ mod fuzz_support;
 enum Op {
     /// fmi3EnterInitializationMode with valid arguments, to get past Instantiated more often.
     EnterInitializationValid,
-    /// fmi3GetFMUState, serialize it into the pool of bytes to corrupt, free it.
-    SeedBytes,
     EnterInitialization,
     ExitInitialization,
     Terminate,
@@ -57,14 +59,8 @@ enum Op {
     Get(ValueType),
     DoStep,
     OutputDerivatives,
-    GetFmuState,
-    UpdateFmuState,
-    SetFmuState,
-    FreeFmuState,
-    SerializedSize,
-    Serialize,
-    Deserialize,
-    DeserializeInto,
+    /// An FMU-state call (tests/fuzz_support/fmu_states.rs).
+    State(StateOp),
     Unsupported,
     DebugLogging,
     Null,
@@ -78,64 +74,59 @@ enum Op {
     HandleToFmi2,
 }
 
-const OPS: &[Op] = &[
-    Op::EnterInitialization,
-    Op::ExitInitialization,
-    Op::Terminate,
-    Op::Reset,
-    Op::Set(ValueType::Float64),
-    Op::Set(ValueType::Float64),
-    Op::Set(ValueType::Float64),
-    Op::Set(ValueType::Int32),
-    Op::Set(ValueType::Int64),
-    Op::Set(ValueType::Int64),
-    Op::Set(ValueType::Float32),
-    Op::Set(ValueType::Boolean),
-    Op::Set(ValueType::String),
-    Op::Set(ValueType::Binary),
-    Op::Set(ValueType::Clock),
-    Op::Set(ValueType::UInt64),
-    Op::Get(ValueType::Float64),
-    Op::Get(ValueType::Float64),
-    Op::Get(ValueType::Float64),
-    Op::Get(ValueType::Int32),
-    Op::Get(ValueType::Int64),
-    Op::Get(ValueType::Float32),
-    Op::Get(ValueType::Boolean),
-    Op::Get(ValueType::String),
-    Op::Get(ValueType::Binary),
-    Op::Get(ValueType::Clock),
-    Op::Get(ValueType::Int8),
-    Op::DoStep,
-    Op::DoStep,
-    Op::DoStep,
-    Op::DoStep,
-    Op::DoStep,
-    Op::OutputDerivatives,
-    Op::GetFmuState,
-    Op::GetFmuState,
-    Op::UpdateFmuState,
-    Op::SetFmuState,
-    Op::SetFmuState,
-    Op::FreeFmuState,
-    Op::SerializedSize,
-    Op::Serialize,
-    Op::Serialize,
-    Op::Deserialize,
-    Op::Deserialize,
-    Op::DeserializeInto,
-    Op::Unsupported,
-    Op::Unsupported,
-    Op::DebugLogging,
-    Op::Null,
-    Op::Null,
-    Op::Free,
-    Op::FreeTwice,
-    Op::Reinstantiate,
-    Op::Reinstantiate,
-    Op::ForeignHandle,
-    Op::HandleToFmi2,
-];
+/// The random calls, each as often as it stands here (the FMU-state calls as in fuzz_support).
+fn random_ops() -> Vec<Op> {
+    let mut ops = vec![
+        Op::EnterInitialization,
+        Op::ExitInitialization,
+        Op::Terminate,
+        Op::Reset,
+        Op::Set(ValueType::Float64),
+        Op::Set(ValueType::Float64),
+        Op::Set(ValueType::Float64),
+        Op::Set(ValueType::Int32),
+        Op::Set(ValueType::Int64),
+        Op::Set(ValueType::Int64),
+        Op::Set(ValueType::Float32),
+        Op::Set(ValueType::Boolean),
+        Op::Set(ValueType::String),
+        Op::Set(ValueType::Binary),
+        Op::Set(ValueType::Clock),
+        Op::Set(ValueType::UInt64),
+        Op::Get(ValueType::Float64),
+        Op::Get(ValueType::Float64),
+        Op::Get(ValueType::Float64),
+        Op::Get(ValueType::Int32),
+        Op::Get(ValueType::Int64),
+        Op::Get(ValueType::Float32),
+        Op::Get(ValueType::Boolean),
+        Op::Get(ValueType::String),
+        Op::Get(ValueType::Binary),
+        Op::Get(ValueType::Clock),
+        Op::Get(ValueType::Int8),
+        Op::DoStep,
+        Op::DoStep,
+        Op::DoStep,
+        Op::DoStep,
+        Op::DoStep,
+        Op::OutputDerivatives,
+    ];
+    ops.extend(fmu_states::RANDOM.map(Op::State));
+    ops.extend([
+        Op::Unsupported,
+        Op::Unsupported,
+        Op::DebugLogging,
+        Op::Null,
+        Op::Null,
+        Op::Free,
+        Op::FreeTwice,
+        Op::Reinstantiate,
+        Op::Reinstantiate,
+        Op::ForeignHandle,
+        Op::HandleToFmi2,
+    ]);
+    ops
+}
 
 impl Op {
     /// The C function the operation calls, for the "names the function" check.
@@ -144,7 +135,6 @@ impl Op {
             Op::EnterInitializationValid | Op::EnterInitialization => {
                 "fmi3EnterInitializationMode".into()
             }
-            Op::SeedBytes | Op::GetFmuState | Op::UpdateFmuState => "fmi3GetFMUState".into(),
             Op::ExitInitialization => "fmi3ExitInitializationMode".into(),
             Op::Terminate => "fmi3Terminate".into(),
             Op::Reset => "fmi3Reset".into(),
@@ -152,11 +142,7 @@ impl Op {
             Op::Get(t) => format!("fmi3Get{t:?}"),
             Op::DoStep => "fmi3DoStep".into(),
             Op::OutputDerivatives => "fmi3GetOutputDerivatives".into(),
-            Op::SetFmuState => "fmi3SetFMUState".into(),
-            Op::FreeFmuState => "fmi3FreeFMUState".into(),
-            Op::SerializedSize => "fmi3SerializedFMUStateSize".into(),
-            Op::Serialize => "fmi3SerializeFMUState".into(),
-            Op::Deserialize | Op::DeserializeInto => "fmi3DeserializeFMUState".into(),
+            Op::State(op) => <ImportedInstance as FmuStates>::function(op).into(),
             Op::DebugLogging => "fmi3SetDebugLogging".into(),
             // Named by the call actually made.
             Op::Unsupported | Op::Null | Op::ForeignHandle | Op::HandleToFmi2 => String::new(),
@@ -343,7 +329,7 @@ fn instantiate(rng: &mut Rng, mut table: &'static ModelTable, name: &str) -> Res
             4 => {
                 // Another model's token: this library carries every model, so it instantiates
                 // that model.
-                table = MODELS[rng.below(MODELS.len())].table;
+                table = sequence::any_model(rng);
                 arguments.instantiation_token =
                     friction_fmu::fmi2::guid(table.model_identifier).map(String::from);
             }
@@ -420,23 +406,9 @@ fn fmi2_calls_on(handle: usize) -> impl Iterator<Item = (String, i32)> {
 
 /// Runs sequence `index`; the error describes the first broken promise.
 fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
-    // Serialized states made in this sequence, raw material for corrupted ones.
-    let mut blobs: Vec<Vec<u8>> = Vec::new();
-    let mut rng = Rng(seed ^ index.wrapping_mul(0xD6E8_FEB8_6659_FD93));
-    let first = MODELS[rng.below(MODELS.len())].table;
-    let second = if rng.chance(70) {
-        first
-    } else {
-        MODELS[rng.below(MODELS.len())].table
-    };
-    let mut slots: Vec<Option<Slot>> = Vec::new();
-    for (k, table) in [first, second].into_iter().enumerate() {
-        match instantiate(&mut rng, table, &format!("fuzz{k}")) {
-            Ok(slot) => slots.push(Some(slot)),
-            Err(e) if e.is_empty() => slots.push(None),
-            Err(e) => return Err(e),
-        }
-    }
+    let mut rng = sequence::rng_of(seed, index);
+    let (first, mut slots) = sequence::first_two(&mut rng, instantiate)?;
+    let mut made = Made::new();
     // An FMI 2.0 instance beside them, whose handle the FMI 3.0 functions must refuse.
     let mut twin = if rng.chance(40) {
         let mut twin = fmi2::ImportedInstance::new(first.model_identifier, "twin")
@@ -444,7 +416,7 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
         if rng.chance(50) {
             twin.initialize();
             if let Ok(mut state) = twin.get_fmu_state() {
-                blobs.extend(twin.serialize_fmu_state(state));
+                made.blobs.extend(twin.serialize_fmu_state(state));
                 twin.free_fmu_state(&mut state);
             }
         }
@@ -454,46 +426,21 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
         None
     };
     let mut freed_handles: Vec<usize> = Vec::new();
-    let mut states: Vec<State> = vec![State::NULL];
-    // Most sequences first bring their instances to Step Mode (with some parameters set on the
-    // way), so that the random calls after that reach the stepping phases often.
-    let mut plan = Vec::new();
-    for k in 0..slots.len() {
-        if rng.chance(75) {
-            plan.extend((0..rng.below(4)).map(|_| {
-                let t = rng.pick(&[ValueType::Float64, ValueType::Int32, ValueType::Int64]);
-                (k, Op::Set(t))
-            }));
-            plan.extend([
-                (k, Op::EnterInitializationValid),
-                (k, Op::ExitInitialization),
-            ]);
-        }
-        if rng.chance(50) {
-            plan.push((k, Op::SeedBytes));
-        }
-    }
-    let calls = plan.len() + 1 + rng.below(60);
-    for call in 0..calls {
-        let (k, op) = match plan.get(call) {
-            Some(&planned) => planned,
-            None => (rng.below(slots.len()), rng.pick(OPS)),
-        };
+    let calls = Calls::new(
+        &mut rng,
+        slots.len(),
+        |rng| Op::Set(rng.pick(&[ValueType::Float64, ValueType::Int32, ValueType::Int64])),
+        &[Op::EnterInitializationValid, Op::ExitInitialization],
+        Op::State(StateOp::SeedBytes),
+    );
+    let ops = random_ops();
+    for call in 0..calls.count {
+        let (k, op) = calls.get(call, &mut rng, slots.len(), &ops);
         if let Op::Reinstantiate = op {
-            let table = MODELS[rng.below(MODELS.len())].table;
-            // A slot whose instance was freed keeps its handle beside the new instance, so
-            // later calls test that the handle stays dead.
-            let keep = slots[k].as_ref().is_some_and(|s| s.freed()) && slots.len() < 4;
-            match instantiate(&mut rng, table, "again") {
-                Ok(slot) if keep => slots.push(Some(slot)),
-                Ok(slot) => {
-                    if let Some(old) = slots[k].replace(slot) {
-                        freed_handles.push(old.instance.handle());
-                    }
-                }
-                Err(e) if e.is_empty() => {}
-                Err(e) => return Err(e),
-            }
+            let replaced =
+                sequence::reinstantiate(&mut rng, &mut slots, k, Slot::freed, instantiate)?;
+            // The replaced instance is dropped, which frees it: its handle must stay refused.
+            freed_handles.extend(replaced.map(|old| old.instance.handle()));
             continue;
         }
         let Some(slot) = slots[k].as_mut() else {
@@ -504,43 +451,22 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
             // Before the call too, so a hanging call shows which it is.
             println!("{call:3}: [{k}] {op:?} ...");
         }
-        let state = rng.pick(&states);
+        let state = rng.pick(&made.states);
         let live = !slot.freed();
         let mut function = op.function();
         let mut description = String::new();
         let status: Option<Status> = match op {
-            Op::EnterInitializationValid => {
-                let stop = rng.chance(50).then_some(table.default_experiment.stop_time);
-                description = format!("(None, 0, {stop:?})");
-                let status = slot.instance.enter_initialization_mode(None, 0.0, stop);
-                if status == Status::Ok {
-                    slot.time = 0.0;
-                }
-                Some(status)
-            }
-            Op::SeedBytes => match slot.instance.get_fmu_state() {
-                Ok(mut state) => {
-                    let bytes = slot.instance.serialize_fmu_state(state);
-                    blobs.extend(bytes);
-                    Some(slot.instance.free_fmu_state(&mut state))
-                }
-                Err(status) => Some(status),
-            },
-            Op::EnterInitialization => {
-                let tolerance = rng.chance(50).then(|| rng.pick(SPECIAL).abs());
-                let start = if rng.chance(70) {
-                    0.0
-                } else {
-                    rng.pick(SPECIAL)
+            Op::EnterInitializationValid | Op::EnterInitialization => {
+                let experiment = match op {
+                    Op::EnterInitializationValid => Experiment::valid(&mut rng, table),
+                    _ => Experiment::random(&mut rng, table),
                 };
-                let stop = rng.chance(40).then(|| {
-                    if rng.chance(70) {
-                        start + table.default_experiment.stop_time
-                    } else {
-                        rng.pick(SPECIAL)
-                    }
-                });
-                description = format!("({tolerance:?}, {start}, {stop:?})");
+                description = experiment.describe();
+                let Experiment {
+                    tolerance,
+                    start,
+                    stop,
+                } = experiment;
                 let status = slot
                     .instance
                     .enter_initialization_mode(tolerance, start, stop);
@@ -572,28 +498,12 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
                 let n = n_values(&mut rng, vrs.len());
                 let (status, values) = slot.instance.get(t, &vrs, n);
                 description = format!("({vrs:?}, nValues = {n}) = {values:?}");
-                if status == Status::Ok && values.iter().any(|x| !x.is_finite()) {
-                    return Err(format!(
-                        "call {call}: {function}{description} returned OK with a non-finite value"
-                    ));
-                }
+                checks::finite_when_ok(call, &function, &description, status, &values)?;
                 Some(status)
             }
             Op::DoStep => {
                 let h = step_size(&mut rng, table);
-                let t = if rng.chance(85) {
-                    slot.time
-                } else {
-                    rng.pick(&[
-                        slot.time + 1e-3,
-                        slot.time - h,
-                        f64::NAN,
-                        f64::INFINITY,
-                        0.0,
-                        -1.0,
-                        slot.time * (1.0 + 1e-15),
-                    ])
-                };
+                let t = sequence::communication_point(&mut rng, slot.time, h);
                 description = format!("(t = {t}, h = {h})");
                 if verbose {
                     println!("     {description}");
@@ -630,87 +540,22 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
                 let n = n_values(&mut rng, vrs.len());
                 let (status, values) = slot.instance.get_output_derivatives(&vrs, &orders, n);
                 description = format!("({vrs:?}, {orders:?}, nValues = {n}) = {values:?}");
-                if status == Status::Ok && values.iter().any(|x| !x.is_finite()) {
-                    return Err(format!(
-                        "call {call}: fmi3GetOutputDerivatives{description} returned OK with a non-finite value"
-                    ));
-                }
+                checks::finite_when_ok(call, &function, &description, status, &values)?;
                 Some(status)
             }
-            Op::GetFmuState => match slot.instance.get_fmu_state() {
-                Ok(state) => {
-                    states.push(state);
-                    Some(Status::Ok)
-                }
-                Err(status) => Some(status),
-            },
-            Op::UpdateFmuState => {
-                let mut target = state;
-                description = format!("({:#x})", state.address());
-                let status = slot.instance.update_fmu_state(&mut target);
-                states.push(target);
-                Some(status)
-            }
-            Op::SetFmuState => {
-                description = format!("({:#x})", state.address());
-                let status = slot.instance.set_fmu_state(state);
-                Some(status)
-            }
-            Op::FreeFmuState => {
-                let mut target = state;
-                description = format!("({:#x})", state.address());
-                Some(slot.instance.free_fmu_state(&mut target))
-            }
-            Op::SerializedSize => Some(slot.instance.serialized_fmu_state_size(state).0),
-            Op::Serialize => {
-                let (status, size) = slot.instance.serialized_fmu_state_size(state);
-                if status != Status::Ok {
-                    function = "fmi3SerializedFMUStateSize".into();
-                    Some(status)
-                } else {
-                    let room = match rng.below(4) {
-                        0 => 0,
-                        1 => size.saturating_sub(1 + rng.below(size.max(1))),
-                        _ => size + rng.below(3) * 8,
-                    };
-                    let mut bytes = vec![0; room];
-                    let status = slot.instance.serialize_fmu_state_into(state, &mut bytes);
-                    if status == Status::Ok {
-                        bytes.truncate(size);
-                        if blobs.len() < 64 {
-                            blobs.push(bytes);
-                        } else {
-                            let i = rng.below(blobs.len());
-                            blobs[i] = bytes;
-                        }
-                    } else if room >= size {
-                        return Err(format!(
-                            "call {call}: fmi3SerializeFMUState refused a buffer of {room} >= {size} bytes: {}",
-                            slot.instance.last_message()
-                        ));
-                    }
-                    Some(status)
-                }
-            }
-            Op::Deserialize | Op::DeserializeInto => {
-                let (bytes, note) = mutate(&mut rng, &blobs);
-                description = format!("({} bytes{note})", bytes.len());
-                if let Op::Deserialize = op {
-                    match slot.instance.deserialize_fmu_state(&bytes) {
-                        Ok(state) => {
-                            states.push(state);
-                            Some(Status::Ok)
-                        }
-                        Err(status) => Some(status),
-                    }
-                } else {
-                    let mut target = state;
-                    let status = slot
-                        .instance
-                        .deserialize_fmu_state_into(&bytes, &mut target);
-                    states.push(target);
-                    Some(status)
-                }
+            Op::State(op) => {
+                let called = fmu_states::call(
+                    op,
+                    &mut slot.instance,
+                    &mut rng,
+                    state,
+                    &mut made,
+                    call,
+                    verbose,
+                )?;
+                function = called.function.into();
+                description = called.description;
+                Some(called.status)
             }
             Op::Unsupported => {
                 let which = rng.pick(&Unsupported::ALL);
@@ -718,12 +563,7 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
                 Some(slot.instance.call_unsupported(which))
             }
             Op::DebugLogging => {
-                let n = rng.below(3);
-                let categories: Vec<&str> = (0..n)
-                    .map(|_| {
-                        rng.pick(&["logCalls", "logStatusError", "logStatusWarning", "nope", ""])
-                    })
-                    .collect();
+                let categories = sequence::debug_categories(&mut rng);
                 description = format!("({categories:?})");
                 Some(slot.instance.set_debug_logging(rng.chance(50), &categories))
             }
@@ -804,10 +644,7 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
             ));
         }
         for (inner, inner_status) in std::mem::take(&mut *lock(&slot.hook.refused)) {
-            let explained = messages
-                .iter()
-                .any(|m| m.status >= Status::Warning as i32 && m.text.contains(&inner));
-            if slot.logs && !explained {
+            if slot.logs && !checks::explained::<Status>(&messages, &inner) {
                 return Err(format!(
                     "call {call}: {function}{description}: the hook's {inner} returned {inner_status:?} without a message naming it: {messages:?}"
                 ));
@@ -816,29 +653,19 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
         let Some(status) = status else { continue };
         // Freed by the hook inside this call: what followed could not be logged.
         let live = live && !slot.freed();
-        if !(0..=4).contains(&(status as i32)) {
-            return Err(format!(
-                "call {call}: {function}{description} returned {}",
-                status as i32
-            ));
-        }
-        if slot.freed() && !slot.instance.is_freed() && status == Status::Error {
-            // Freed by the hook during or before this call: refused, whatever was logged before.
-        } else if !live {
-            if status != Status::Error || !messages.is_empty() {
-                return Err(format!(
-                    "call {call}: {function} on a freed instance gave {status:?} {messages:?}"
-                ));
-            }
-        } else if status != Status::Ok
-            && slot.logs
-            && !messages
-                .iter()
-                .any(|m| m.status >= Status::Warning as i32 && m.text.contains(&function))
-        {
-            return Err(format!(
-                "call {call}: {function}{description} returned {status:?} without a message naming it: {messages:?}"
-            ));
+        // Freed by the hook during or before this call and refused: whatever was logged before.
+        let refused_after_the_hook_freed_it =
+            slot.freed() && !slot.instance.is_freed() && status == Status::Error;
+        if !refused_after_the_hook_freed_it {
+            checks::status_kept_its_promises(
+                call,
+                &function,
+                &description,
+                status,
+                live,
+                slot.logs,
+                &messages,
+            )?;
         }
     }
     // Freed handles stay refused after the sequence made and freed other instances.
@@ -854,7 +681,7 @@ fn sequence(seed: u64, index: u64, verbose: bool) -> Result<(), String> {
 
 #[test]
 fn random_fmi3_call_sequences_never_crash_panic_or_lie() {
-    fuzz_support::run(sequence, 50_000);
+    fuzz_support::runner::run(sequence, 50_000);
 }
 
 #[test]
