@@ -74,7 +74,9 @@ impl Snapshot {
         // Only values the setters would accept (outputs are recomputed from the simulation). An
         // Integer or Enumeration arrives through an integer setter, so it is a whole number;
         // check that here, as check_value lets NaN and fractions through for those kinds. The
-        // values are in the table's order.
+        // values are in the table's order. The values the instance holds passed those checks
+        // when they were set, so a state that holds the same ones (a master retrying a step)
+        // needs none of them again.
         let table = instance.model.table;
         let given = || {
             table
@@ -83,28 +85,30 @@ impl Snapshot {
                 .zip(&self.values)
                 .filter(|(var, _)| var.causality != Causality::Output)
         };
-        for (var, &value) in given() {
-            let whole = matches!(var.kind, Kind::Real { .. }) || value.fract() == 0.0;
-            if !whole {
-                return Err(Error::state(
-                    format!("the FMU state holds {} = {value}", var.name),
-                    "a whole number",
-                ));
+        let current = instance.values.as_slice();
+        let same_values = table
+            .variables
+            .iter()
+            .zip(self.values.iter().zip(current))
+            .filter(|(var, _)| var.causality != Causality::Output)
+            .all(|(_, (then, now))| then.to_bits() == now.to_bits());
+        if !same_values {
+            for (var, &value) in given() {
+                let whole = matches!(var.kind, Kind::Real { .. }) || value.fract() == 0.0;
+                if !whole {
+                    return Err(Error::state(
+                        format!("the FMU state holds {} = {value}", var.name),
+                        "a whole number",
+                    ));
+                }
+                check_value(table, var, value).map_err(|e| {
+                    Error::state(format!("the FMU state holds {}", e.found), e.expected)
+                })?;
             }
-            check_value(table, var, value).map_err(|e| {
-                Error::state(format!("the FMU state holds {}", e.found), e.expected)
-            })?;
         }
         // The simulation the instance has can take the state as it is when it was built from
         // the same values and start time: no build, and no periodic start computed again.
-        let current = instance.values.as_slice();
-        let same_build = self.start_time == instance.start_time
-            && table
-                .variables
-                .iter()
-                .zip(self.values.iter().zip(current))
-                .filter(|(var, _)| var.causality != Causality::Output)
-                .all(|(_, (then, now))| then.to_bits() == now.to_bits());
+        let same_build = same_values && self.start_time == instance.start_time;
         // A model exists from the end of initialization on, and only then.
         let needs_simulation =
             !matches!(self.phase, Phase::Instantiated | Phase::InitializationMode);
